@@ -1,0 +1,21 @@
+#include "core/gbuffer.h"
+
+#include <limits>
+
+namespace shadowlab {
+
+void GBuffer::resize(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = pixel_count();
+  position.assign(n, vec3(0.0f));
+  normal.assign(n, vec3(0.0f));
+  geo_normal.assign(n, vec3(0.0f));
+  uv.assign(n, vec2(0.0f));
+  depth.assign(n, std::numeric_limits<float>::infinity());
+  mesh_id.assign(n, kNoPrimitive);
+  prim_id.assign(n, kNoPrimitive);
+  covered.assign(n, 0);
+}
+
+}  // namespace shadowlab

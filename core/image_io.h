@@ -1,0 +1,24 @@
+#pragma once
+// EXR and PNG I/O. Masks: one float32 channel "Y". Texel indices: one UINT channel "texel".
+// PNG previews: 8-bit sRGB-encoded grey for people (not for measurement). Texture loading
+// (PNG/JPG via stb) returns linear RGBA floats in [0,1] for alpha testing and slides.
+// Every failure throws InputError naming the file and the reason.
+#include <string>
+
+#include "core/image.h"
+
+namespace shadowlab {
+
+void write_exr_mask(const std::string& path, const ImageF& mask);
+ImageF read_exr_mask(const std::string& path);
+void write_exr_texels(const std::string& path, const ImageU32& texels);
+ImageU32 read_exr_texels(const std::string& path);
+// 8-bit PNG of a one-channel image in [0,1] (clamped), sRGB-encoded.
+void write_png_grey(const std::string& path, const ImageF& image);
+// 8-bit PNG of an RGB image (3 channels, linear [0,1], sRGB-encoded on write).
+void write_png_rgb(const std::string& path, const ImageF& image);
+// Loads an 8-bit PNG/JPG/TGA/BMP texture as 4 channels (RGBA) in [0,1]; colour channels are
+// converted from sRGB to linear, alpha stays as stored.
+ImageF load_texture_rgba(const std::string& path);
+
+}  // namespace shadowlab

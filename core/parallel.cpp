@@ -1,0 +1,90 @@
+#include "core/parallel.h"
+
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/error.h"
+
+namespace shadowlab {
+namespace {
+
+int initial_thread_count() {
+  if (const char* env = std::getenv("SHADOWLAB_THREADS"); env && *env) {
+    char* end = nullptr;
+    const long n = std::strtol(env, &end, 10);
+    if (*end != '\0' || n < 1 || n > 1024)
+      throw InputError("SHADOWLAB_THREADS", std::string("expected an integer in [1, 1024], got '") +
+                                                env + "'");
+    return int(n);
+  }
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw == 0 ? 1 : int(hw);
+}
+
+struct ArenaState {
+  std::mutex mutex;
+  int count = 0;
+  std::unique_ptr<tbb::task_arena> arena;
+};
+
+ArenaState& state() {
+  static ArenaState s;
+  return s;
+}
+
+tbb::task_arena& arena() {
+  ArenaState& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  if (!s.arena) {
+    if (s.count == 0) s.count = initial_thread_count();
+    s.arena = std::make_unique<tbb::task_arena>(s.count);
+  }
+  return *s.arena;
+}
+
+}  // namespace
+
+void set_thread_count(int n) {
+  if (n < 1 || n > 1024)
+    throw InputError("--threads", "expected an integer in [1, 1024], got " + std::to_string(n));
+  ArenaState& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  s.count = n;
+  s.arena.reset();
+}
+
+int thread_count() {
+  arena();
+  return state().count;
+}
+
+void parallel_for(size_t begin, size_t end, const std::function<void(size_t)>& body) {
+  if (end <= begin) return;
+  arena().execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 1),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+                      });
+  });
+}
+
+void parallel_for_chunks(size_t count, size_t grain,
+                         const std::function<void(size_t, size_t)>& body) {
+  if (count == 0) return;
+  if (grain == 0) grain = 1;
+  const size_t chunks = (count + grain - 1) / grain;
+  parallel_for(0, chunks, [&](size_t c) {
+    const size_t b = c * grain;
+    const size_t e = b + grain < count ? b + grain : count;
+    body(b, e);
+  });
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,23 @@
+#include "test_paths.h"
+
+#include <filesystem>
+
+namespace shadowlab::test {
+
+std::string source_path(const std::string& relative) {
+  return std::string(SHADOWLAB_SOURCE_DIR) + "/" + relative;
+}
+
+std::string binary_path(const std::string& relative) {
+  const std::string path = std::string(SHADOWLAB_BINARY_DIR) + "/test_output/" + relative;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  return path;
+}
+
+std::string assets_dir() {
+  const std::filesystem::path dir =
+      std::filesystem::path(SHADOWLAB_SOURCE_DIR) / ".." / "shared" / "assets";
+  return std::filesystem::is_directory(dir) ? std::filesystem::canonical(dir).string() : "";
+}
+
+}  // namespace shadowlab::test
