@@ -7,6 +7,7 @@
 #include <thread>
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -31,6 +32,7 @@ int initial_thread_count() {
 struct ArenaState {
   std::mutex mutex;
   int count = 0;
+  std::unique_ptr<tbb::global_control> limit;
   std::unique_ptr<tbb::task_arena> arena;
 };
 
@@ -44,6 +46,10 @@ tbb::task_arena& arena() {
   std::lock_guard<std::mutex> lock(s.mutex);
   if (!s.arena) {
     if (s.count == 0) s.count = initial_thread_count();
+    // Raise TBB's global worker limit to the requested count, which may exceed the core count
+    // (determinism tests run 7 threads on 2 cores).
+    s.limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                    size_t(s.count));
     s.arena = std::make_unique<tbb::task_arena>(s.count);
   }
   return *s.arena;
@@ -58,6 +64,7 @@ void set_thread_count(int n) {
   std::lock_guard<std::mutex> lock(s.mutex);
   s.count = n;
   s.arena.reset();
+  s.limit.reset();
 }
 
 int thread_count() {

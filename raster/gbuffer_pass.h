@@ -1,0 +1,15 @@
+#pragma once
+// The camera pass: rasterizes the scene from its camera into a GBuffer (core/gbuffer.h).
+// Visibility is resolved first (triangle id and barycentrics per pixel); attributes are then
+// computed once per covered pixel, so overdraw costs no attribute work.
+#include "core/gbuffer.h"
+#include "core/scene.h"
+#include "raster/raster_types.h"
+
+namespace shadowlab {
+
+// Renders scene.camera's view at scene.camera.width × height with no face culling.
+// Geometric and shading normals are flipped to face the camera (two-sided surfaces).
+GBuffer render_gbuffer(const Scene& scene, RasterStats* stats = nullptr);
+
+}  // namespace shadowlab

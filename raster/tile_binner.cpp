@@ -1,0 +1,119 @@
+#include "raster/tile_binner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "raster/clip.h"
+
+namespace shadowlab {
+namespace {
+
+// Triangles per chunk: large enough to amortise the per-chunk tile tables, small enough to
+// balance two or more threads.
+constexpr size_t kChunkTriangles = 8192;
+
+bool finite4(const vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+void add_stats(RasterStats& into, const RasterStats& s) {
+  into.triangles_in += s.triangles_in;
+  into.culled_frustum += s.culled_frustum;
+  into.culled_facing += s.culled_facing;
+  into.dropped_degenerate += s.dropped_degenerate;
+  into.dropped_nonfinite += s.dropped_nonfinite;
+  into.clipped += s.clipped;
+  into.setups += s.setups;
+}
+
+}  // namespace
+
+BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_proj,
+                          CullMode cull, int width, int height) {
+  BinnedFrame frame;
+  frame.width = width;
+  frame.height = height;
+  frame.tiles_x = (width + kTileSize - 1) / kTileSize;
+  frame.tiles_y = (height + kTileSize - 1) / kTileSize;
+  const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
+  if (width <= 0 || height <= 0) return frame;
+
+  // Vertex transform, once per vertex.
+  std::vector<std::vector<vec4>> clip(meshes.size());
+  std::vector<size_t> first_triangle(meshes.size() + 1, 0);
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    clip[m].resize(meshes[m].vertex_count);
+    first_triangle[m + 1] = first_triangle[m] + meshes[m].triangle_count;
+    const MeshView& mesh = meshes[m];
+    std::vector<vec4>& out = clip[m];
+    parallel_for_chunks(mesh.vertex_count, 16384, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) out[i] = view_proj * vec4(mesh.positions[i], 1.0f);
+    });
+  }
+  const size_t total = first_triangle.back();
+  const float guard_x = float(1.0 + 2.0 * kGuardBandPixels / double(width));
+  const float guard_y = float(1.0 + 2.0 * kGuardBandPixels / double(height));
+
+  const size_t chunk_count = (total + kChunkTriangles - 1) / kChunkTriangles;
+  frame.chunks.resize(chunk_count);
+  std::vector<RasterStats> chunk_stats(chunk_count);
+  parallel_for(0, chunk_count, [&](size_t ci) {
+    BinnedChunk& chunk = frame.chunks[ci];
+    RasterStats& st = chunk_stats[ci];
+    const size_t begin = ci * kChunkTriangles, end = std::min(total, begin + kChunkTriangles);
+    size_t m = size_t(std::upper_bound(first_triangle.begin(), first_triangle.end(), begin) -
+                      first_triangle.begin()) - 1;
+    for (size_t t = begin; t < end; ++t) {
+      while (t >= first_triangle[m + 1]) ++m;
+      const size_t local = t - first_triangle[m];
+      const uint32_t* idx = meshes[m].indices + 3 * local;
+      const vec4& a = clip[m][idx[0]];
+      const vec4& b = clip[m][idx[1]];
+      const vec4& c = clip[m][idx[2]];
+      ++st.triangles_in;
+      if (!finite4(a) || !finite4(b) || !finite4(c)) {
+        ++st.dropped_nonfinite;
+        continue;
+      }
+      const ClipClass cls = classify_triangle(a, b, c, guard_x, guard_y);
+      if (cls == ClipClass::Outside) {
+        ++st.culled_frustum;
+        continue;
+      }
+      TriangleSetup s;
+      if (cls == ClipClass::Inside) {
+        const ClipVertex v0{a, vec3(1, 0, 0)}, v1{b, vec3(0, 1, 0)}, v2{c, vec3(0, 0, 1)};
+        if (setup_triangle(v0, v1, v2, uint32_t(t), width, height, cull, s, st))
+          chunk.setups.push_back(s);
+        continue;
+      }
+      ++st.clipped;
+      const ClipPolygon poly = clip_triangle(a, b, c, guard_x, guard_y);
+      for (int i = 1; i + 1 < poly.count; ++i)
+        if (setup_triangle(poly.v[0], poly.v[i], poly.v[i + 1], uint32_t(t), width, height, cull,
+                           s, st))
+          chunk.setups.push_back(s);
+    }
+    st.setups = chunk.setups.size();
+    // Bin: count per tile, prefix-sum, fill — in setup order.
+    chunk.offsets.assign(tiles + 1, 0);
+    for (const TriangleSetup& s : chunk.setups)
+      for (int ty = s.min_y / kTileSize; ty <= s.max_y / kTileSize; ++ty)
+        for (int tx = s.min_x / kTileSize; tx <= s.max_x / kTileSize; ++tx)
+          ++chunk.offsets[size_t(ty) * frame.tiles_x + tx + 1];
+    for (size_t t = 0; t < tiles; ++t) chunk.offsets[t + 1] += chunk.offsets[t];
+    chunk.items.resize(chunk.offsets[tiles]);
+    std::vector<uint32_t> cursor(chunk.offsets.begin(), chunk.offsets.end() - 1);
+    for (uint32_t i = 0; i < chunk.setups.size(); ++i) {
+      const TriangleSetup& s = chunk.setups[i];
+      for (int ty = s.min_y / kTileSize; ty <= s.max_y / kTileSize; ++ty)
+        for (int tx = s.min_x / kTileSize; tx <= s.max_x / kTileSize; ++tx)
+          chunk.items[cursor[size_t(ty) * frame.tiles_x + tx]++] = i;
+    }
+  });
+  for (const RasterStats& s : chunk_stats) add_stats(frame.stats, s);
+  return frame;
+}
+
+}  // namespace shadowlab

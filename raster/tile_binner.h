@@ -1,0 +1,43 @@
+#pragma once
+// Front end of the rasterizer: vertex transform, trivial rejection, clipping, setup and binning
+// of triangles to kTileSize² tiles. Triangles are processed in fixed chunks of submission order
+// (in parallel); each chunk keeps its own per-tile lists (count, prefix-sum, fill), and tiles
+// visit the chunks in order, so every tile sees its triangles in submission order whatever the
+// thread count.
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "raster/raster_types.h"
+#include "raster/setup.h"
+
+namespace shadowlab {
+
+// A mesh as the rasterizer sees it: world-space positions and a triangle list.
+struct MeshView {
+  const vec3* positions = nullptr;
+  size_t vertex_count = 0;
+  const uint32_t* indices = nullptr;  // 3 per triangle
+  size_t triangle_count = 0;
+};
+
+// Triangles of one chunk that touch one tile are setups[chunk][items[offsets[t] .. offsets[t+1])].
+struct BinnedChunk {
+  std::vector<TriangleSetup> setups;
+  std::vector<uint32_t> offsets;  // tiles + 1 entries
+  std::vector<uint32_t> items;    // indices into setups
+};
+
+struct BinnedFrame {
+  int width = 0, height = 0;
+  int tiles_x = 0, tiles_y = 0;
+  std::vector<BinnedChunk> chunks;
+  RasterStats stats;
+};
+
+// Transforms, clips, sets up and bins every triangle of `meshes` (global triangle index =
+// running count over the meshes in order) for a width × height viewport.
+BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_proj,
+                          CullMode cull, int width, int height);
+
+}  // namespace shadowlab
