@@ -1,0 +1,197 @@
+#include "experiments/cli.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/obj_loader.h"
+#include "core/parallel.h"
+#include "core/scene_library.h"
+
+namespace shadowlab {
+namespace {
+
+double parse_double(const std::string& flag, const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    throw InputError(flag, "expected a number, got '" + s + "'");
+  return v;
+}
+
+long parse_long(const std::string& flag, const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno == ERANGE)
+    throw InputError(flag, "expected an integer, got '" + s + "'");
+  return v;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, sep)) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+std::string ParsedArgs::get(const std::string& flag, const std::string& fallback) const {
+  const auto it = values.find(flag);
+  return it == values.end() ? fallback : it->second;
+}
+
+int ParsedArgs::get_int(const std::string& flag, int fallback, int lo, int hi) const {
+  if (!has(flag)) return fallback;
+  const long v = parse_long(flag, get(flag, ""));
+  if (v < lo || v > hi)
+    throw InputError(flag, get(flag, "") + " is outside [" + std::to_string(lo) + ", " +
+                               std::to_string(hi) + "]");
+  return int(v);
+}
+
+double ParsedArgs::get_double(const std::string& flag, double fallback, double lo,
+                              double hi) const {
+  if (!has(flag)) return fallback;
+  const double v = parse_double(flag, get(flag, ""));
+  if (v < lo || v > hi)
+    throw InputError(flag, get(flag, "") + " is outside [" + std::to_string(lo) + ", " +
+                               std::to_string(hi) + "]");
+  return v;
+}
+
+std::vector<int> ParsedArgs::get_int_list(const std::string& flag, const std::vector<int>& fallback,
+                                          int lo, int hi) const {
+  if (!has(flag)) return fallback;
+  std::vector<int> out;
+  for (const std::string& item : split(get(flag, ""), ',')) {
+    const long v = parse_long(flag, item);
+    if (v < lo || v > hi)
+      throw InputError(flag, item + " is outside [" + std::to_string(lo) + ", " +
+                                 std::to_string(hi) + "]");
+    out.push_back(int(v));
+  }
+  if (out.empty()) throw InputError(flag, "expected a comma-separated list of integers");
+  return out;
+}
+
+vec3 ParsedArgs::get_vec3(const std::string& flag, const vec3& fallback) const {
+  if (!has(flag)) return fallback;
+  const std::vector<std::string> parts = split(get(flag, ""), ',');
+  if (parts.size() != 3) throw InputError(flag, "expected x,y,z, got '" + get(flag, "") + "'");
+  return vec3(float(parse_double(flag, parts[0])), float(parse_double(flag, parts[1])),
+              float(parse_double(flag, parts[2])));
+}
+
+std::vector<FlagDef> common_flags() {
+  return {
+      {"--scene", "S", "built-in scene name (default, plane) or an .obj file (default: default)"},
+      {"--width", "W", "image width in pixels (default: the scene's camera, 1024)"},
+      {"--height", "H", "image height in pixels (default: the scene's camera, 768)"},
+      {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
+      {"--light-radius", "R", "sphere-light radius in metres; 0 = hard point light (default: the scene's)"},
+      {"--light-pos", "X,Y,Z", "light position, metres (default: the scene's)"},
+      {"--eye", "X,Y,Z", "camera position, metres (default: the scene's)"},
+      {"--target", "X,Y,Z", "camera target, metres (default: the scene's)"},
+      {"--fov", "DEG", "vertical field of view in degrees (default: the scene's)"},
+      {"--out", "DIR", "output folder"},
+      {"--help", "", "print this help"},
+  };
+}
+
+ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
+                      size_t max_positional) {
+  ParsedArgs args;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--", 0) != 0 || a == "--") {
+      if (args.positional.size() >= max_positional)
+        throw InputError(a, "unexpected argument (see --help)");
+      args.positional.push_back(a);
+      continue;
+    }
+    std::string value;
+    bool inline_value = false;
+    if (const size_t eq = a.find('='); eq != std::string::npos) {
+      value = a.substr(eq + 1);
+      a = a.substr(0, eq);
+      inline_value = true;
+    }
+    const FlagDef* def = nullptr;
+    for (const FlagDef& d : defs)
+      if (d.name == a) def = &d;
+    if (!def) throw InputError(a, "unknown flag (see --help)");
+    if (def->value.empty()) {
+      if (inline_value) throw InputError(a, "takes no value");
+      args.values[a] = "1";
+      continue;
+    }
+    if (!inline_value) {
+      if (i + 1 >= argc) throw InputError(a, "expects a value " + def->value);
+      value = argv[++i];
+    }
+    if (args.values.count(a)) throw InputError(a, "given twice");
+    args.values[a] = value;
+  }
+  return args;
+}
+
+std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& defs) {
+  std::string s = "usage: " + synopsis + "\n";
+  for (const FlagDef& d : defs) {
+    std::string left = "  " + d.name + (d.value.empty() ? "" : " " + d.value);
+    if (left.size() < 26) left.resize(26, ' ');
+    s += left + " " + d.help + "\n";
+  }
+  return s;
+}
+
+Scene scene_from_args(const ParsedArgs& args) {
+  if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
+  const std::string name = args.get("--scene", "default");
+  const bool is_file = name.find('/') != std::string::npos || name.find('.') != std::string::npos;
+  Scene scene = is_file ? make_obj_scene(name) : make_builtin_scene(name);
+  Camera& cam = scene.camera;
+  cam.width = args.get_int("--width", cam.width, 1, kMaxImageSide);
+  cam.height = args.get_int("--height", cam.height, 1, kMaxImageSide);
+  cam.eye = args.get_vec3("--eye", cam.eye);
+  cam.target = args.get_vec3("--target", cam.target);
+  cam.fov_y_deg = float(args.get_double("--fov", cam.fov_y_deg, 1.0, 170.0));
+  scene.light.position = args.get_vec3("--light-pos", scene.light.position);
+  scene.light.radius = float(args.get_double("--light-radius", scene.light.radius, 0.0, 1e4));
+  validate_scene(scene, is_file ? name : "--scene " + name);
+  return scene;
+}
+
+int run_main(int argc, char** argv, const std::function<int(int, char**)>& body) {
+  const std::string prog = std::filesystem::path(argv[0]).filename().string();
+  try {
+    return body(argc, argv);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
+    return 1;
+  }
+}
+
+void make_output_dir(const std::string& dir, const std::string& flag) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(flag, "cannot create folder '" + dir + "': " + ec.message());
+}
+
+bool stderr_is_terminal() { return isatty(2) != 0; }
+
+}  // namespace shadowlab

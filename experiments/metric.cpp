@@ -1,0 +1,40 @@
+// metric: the Kluczek shadow metric of a test mask against a reference mask (EXR files).
+#include <cstdio>
+
+#include "core/image_io.h"
+#include "experiments/cli.h"
+#include "metric/metric_report.h"
+
+using namespace shadowlab;
+
+int main(int argc, char** argv) {
+  return run_main(argc, argv, [](int argc, char** argv) {
+    const std::vector<FlagDef> defs = {
+        {"--texels", "T.exr", "texel-index image of the test mask (detail score; else detail = 1)"},
+        {"--json", "", "print one JSON object instead of the table"},
+        {"--shadow-ms", "MS", "shadow time T_shadowed - T_unshadowed in ms (adds the performance score)"},
+        {"--fps", "F", "target frame rate for the performance score (default 30)"},
+        {"--help", "", "print this help"},
+    };
+    const ParsedArgs args = parse_args(argc, argv, defs, 2);
+    if (args.has("--help")) {
+      std::printf("%s", usage_text("metric TEST.exr REF.exr [flags]", defs).c_str());
+      return 0;
+    }
+    if (args.positional.size() != 2)
+      throw InputError("metric", "expects two files: TEST.exr REF.exr (see --help)");
+    const ImageF test = read_exr_mask(args.positional[0]);
+    const ImageF ref = read_exr_mask(args.positional[1]);
+    ImageU32 texels;
+    if (args.has("--texels")) texels = read_exr_texels(args.get("--texels", ""));
+    MetricWeights w;
+    w.target_fps = args.get_double("--fps", 30.0, 1e-3, 1e6);
+    Timings t;
+    if (args.has("--shadow-ms")) t.shadowed_ms = args.get_double("--shadow-ms", 0.0, 0.0, 1e9);
+    const MetricReport r = compute_metric(test, ref, args.has("--texels") ? &texels : nullptr,
+                                          args.has("--shadow-ms") ? &t : nullptr, w);
+    std::printf("%s\n", args.has("--json") ? metric_report_json(r).c_str()
+                                            : metric_report_table(r).c_str());
+    return 0;
+  });
+}

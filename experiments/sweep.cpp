@@ -1,0 +1,204 @@
+#include "experiments/sweep.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "experiments/output_files.h"
+#include "raster/gbuffer_pass.h"
+
+namespace shadowlab {
+namespace {
+
+std::string upper(std::string s) {
+  for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+void progress_line(const SweepConfig& c, size_t done, size_t total, const std::string& what,
+                   std::chrono::steady_clock::time_point start) {
+  if (!c.progress) return;
+  const double elapsed = ms_since(start) / 1000.0;
+  const double eta = done == 0 ? 0.0 : elapsed / double(done) * double(total - done);
+  std::fprintf(stderr, "\r[%zu/%zu] %-28s elapsed %5.1f s, ETA %5.1f s   ", done, total,
+               what.c_str(), elapsed, eta);
+  if (done == total) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) {
+  SweepResult out;
+  out.scene = scene.name;
+  out.width = scene.camera.width;
+  out.height = scene.camera.height;
+  std::vector<TechniqueSpec> specs;
+  for (const std::string& t : config.techniques) {
+    TechniqueSpec s = parse_technique_spec(t, "--techniques");
+    if (s.params.count("res")) throw InputError("--techniques", "'" + t + "': res is swept by --resolutions");
+    specs.push_back(s);
+    for (int r : config.resolutions) {
+      TechniqueSpec probe = s;
+      probe.params["res"] = std::to_string(r);
+      validate_technique(probe, "--techniques");
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const size_t total = 1 + specs.size() * config.resolutions.size();
+  size_t done = 0;
+
+  GBuffer g;
+  out.camera_ms = median_ms(config.repeats, [&] { g = render_gbuffer(scene); });
+  MetricWeights weights;
+  weights.target_fps = config.target_fps;
+
+  // Reference first: the mask every row is compared with.
+  progress_line(config, done, total, "reference", start);
+  const TechniqueSpec ref_spec =
+      parse_technique_spec("rt:spp=" + std::to_string(config.spp), "--spp");
+  RunOptions ref_opt;
+  ref_opt.repeats = 1;  // the reference is not what is being timed; run it once
+  ref_opt.cache_dir = config.cache_dir;
+  ref_opt.flag = "--spp";
+  out.reference.spec = ref_spec.text;
+  out.reference.label = "RT " + std::to_string(config.spp) + "spp";
+  out.reference.result = run_technique(ref_spec, scene, g, ref_opt);
+  out.reference.report = compute_metric(out.reference.result.mask, out.reference.result.mask,
+                                         nullptr, nullptr, weights);
+  if (!config.out_dir.empty())
+    write_result_files(config.out_dir, "reference_", out.reference.result, ref_spec.text,
+                       out.camera_ms);
+  progress_line(config, ++done, total, "reference", start);
+
+  for (const TechniqueSpec& base : specs)
+    for (int res : config.resolutions) {
+      TechniqueSpec spec = base;
+      spec.params["res"] = std::to_string(res);
+      spec.text = spec_text(spec);
+      SweepRow row;
+      row.spec = spec.text;
+      row.res = res;
+      row.label = upper(base.text) + " " + std::to_string(res);
+      progress_line(config, done, total, row.label, start);
+      RunOptions opt;
+      opt.repeats = config.repeats;
+      opt.flag = "--techniques";
+      row.result = run_technique(spec, scene, g, opt);
+      const Timings t{out.camera_ms + row.result.shadow_ms(), out.camera_ms};
+      row.report = compute_metric(row.result.mask, out.reference.result.mask,
+                                  row.result.texels.empty() ? nullptr : &row.result.texels, &t,
+                                  weights);
+      if (!config.out_dir.empty()) {
+        std::string prefix = base.text + "_" + std::to_string(res) + "_";
+        std::replace_if(prefix.begin(), prefix.end(), [](char c) { return c == ':' || c == ',' || c == '='; }, '_');
+        write_result_files(config.out_dir, prefix, row.result, spec.text, out.camera_ms);
+      }
+      out.rows.push_back(std::move(row));
+      progress_line(config, ++done, total, out.rows.back().label, start);
+    }
+  return out;
+}
+
+std::string sweep_table(const SweepResult& r) {
+  std::string s;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%-18s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s\n", "method", "c10", "c50",
+                "c90", "dark", "lit", "acne", "noise", "detail", "shadow ms", "RP", "total");
+  s += line;
+  auto add = [&](const SweepRow& row, bool is_ref) {
+    const MetricReport& m = row.report;
+    char time[32];
+    if (row.result.from_cache)
+      std::snprintf(time, sizeof time, "cached");
+    else
+      std::snprintf(time, sizeof time, "%.2f", row.result.shadow_ms());
+    char rp[16], total[16];
+    if (is_ref) {
+      std::snprintf(rp, sizeof rp, "-");
+      std::snprintf(total, sizeof total, "%.3f", m.total);
+    } else {
+      std::snprintf(rp, sizeof rp, "%.3f", m.performance);
+      std::snprintf(total, sizeof total, "%.3f", m.total);
+    }
+    std::snprintf(line, sizeof line,
+                  "%-18s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s\n",
+                  row.label.c_str(), m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
+                  m.detail, time, rp, total);
+    s += line;
+  };
+  add(r.reference, true);
+  for (const SweepRow& row : r.rows) add(row, false);
+  return s;
+}
+
+namespace {
+
+nlohmann::json row_json(const SweepRow& row) {
+  const MetricReport& m = row.report;
+  nlohmann::json j;
+  j["label"] = row.label;
+  j["spec"] = row.spec;
+  j["res"] = row.res;
+  for (const auto& [k, v] : std::initializer_list<std::pair<const char*, double>>{
+           {"c10", m.c10}, {"c50", m.c50}, {"c90", m.c90}, {"dark", m.dark}, {"lit", m.lit},
+           {"acne", m.acne}, {"noise", m.noise}, {"detail", m.detail},
+           {"fidelity", m.fidelity}, {"aesthetics", m.aesthetics}, {"ssim", m.ssim},
+           {"rmse", m.rmse}, {"psnr", m.psnr}, {"total", m.total}})
+    j[k] = v;
+  if (m.has_performance) j["performance"] = m.performance;
+  j["map_ms"] = row.result.map_ms;
+  j["lookup_ms"] = row.result.lookup_ms;
+  j["shadow_ms"] = row.result.shadow_ms();
+  j["faces_needed"] = row.result.faces_needed;
+  j["faces_rendered"] = row.result.faces_rendered;
+  j["from_cache"] = row.result.from_cache;
+  j["notes"] = row.result.notes;
+  return j;
+}
+
+}  // namespace
+
+void write_sweep_csv(const std::string& path, const SweepResult& r) {
+  std::ofstream f(path);
+  f << "label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
+       "lookup_ms,performance,total,faces_rendered\n";
+  auto add = [&](const SweepRow& row) {
+    const MetricReport& m = row.report;
+    char buf[1024];
+    std::snprintf(buf, sizeof buf,
+                  "%s,\"%s\",%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,%.4f,"
+                  "%.4f,%.6f,%.6f,%d\n",
+                  row.label.c_str(), row.spec.c_str(), row.res, m.c10, m.c50, m.c90, m.dark,
+                  m.lit, m.acne, m.noise, m.detail, m.ssim, m.rmse, m.psnr, row.result.shadow_ms(),
+                  row.result.map_ms, row.result.lookup_ms, m.performance, m.total,
+                  row.result.faces_rendered);
+    f << buf;
+  };
+  add(r.reference);
+  for (const SweepRow& row : r.rows) add(row);
+  if (!f) throw InputError(path, "cannot write");
+}
+
+void write_sweep_json(const std::string& path, const SweepResult& r) {
+  nlohmann::json j;
+  j["scene"] = r.scene;
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["camera_ms"] = r.camera_ms;
+  j["reference"] = row_json(r.reference);
+  j["rows"] = nlohmann::json::array();
+  for (const SweepRow& row : r.rows) j["rows"].push_back(row_json(row));
+  std::ofstream f(path);
+  f << j.dump(2) << "\n";
+  if (!f) throw InputError(path, "cannot write");
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,46 @@
+#pragma once
+// The resolution sweep behind experiments/resolution_sweep: every technique at every
+// resolution against the ray-traced reference, scored by the shadow metric, with timings.
+#include <string>
+#include <vector>
+
+#include "metric/shadow_metric.h"
+#include "techniques/technique.h"
+
+namespace shadowlab {
+
+struct SweepConfig {
+  std::vector<std::string> techniques = {"csm"};  // specs without res (res is swept)
+  std::vector<int> resolutions = {128, 256, 512, 1024};
+  int spp = 256;                // reference samples per pixel
+  int repeats = 5;              // timing repeats (median)
+  std::string cache_dir;        // reference cache; empty = none
+  std::string out_dir;          // masks (EXR + PNG) per row when non-empty
+  bool progress = false;        // progress line with ETA on stderr
+  double target_fps = 30.0;     // performance score T_ref = 1/fps
+};
+
+struct SweepRow {
+  std::string label;            // "CSM 512", "RT 256spp"
+  std::string spec;             // canonical spec text
+  int res = 0;                  // 0 for the reference
+  ShadowResult result;
+  MetricReport report;
+};
+
+struct SweepResult {
+  std::string scene;
+  int width = 0, height = 0;
+  double camera_ms = 0.0;       // unshadowed camera pass, median
+  SweepRow reference;
+  std::vector<SweepRow> rows;
+};
+
+SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config);
+
+// Table in the layout of Kluczek's Table I plus time, RP and total; reference row first.
+std::string sweep_table(const SweepResult& result);
+void write_sweep_csv(const std::string& path, const SweepResult& result);
+void write_sweep_json(const std::string& path, const SweepResult& result);
+
+}  // namespace shadowlab

@@ -1,0 +1,223 @@
+#include "techniques/cube_shadow_map.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.h"
+#include "core/timer.h"
+#include "raster/pipeline.h"
+
+namespace shadowlab {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Continuous texel coordinates (x right, y down, texel centres at +0.5) of world point p in a face.
+vec2 face_texel_coords(const mat4& view_proj, const vec3& p, int res) {
+  const vec4 q = view_proj * vec4(p, 1.0f);
+  const float u = q.x / q.w, v = q.y / q.w;
+  return vec2((u * 0.5f + 0.5f) * float(res), (0.5f - v * 0.5f) * float(res));
+}
+
+int clamp_texel(float c, int res) {
+  return std::clamp(int(std::floor(c)), 0, res - 1);
+}
+
+// Visits the texels of a lookup: calls fn(face, x, y, weight) for each, weights summing to 1.
+// Texels outside the face are redirected through their direction to the face that owns it.
+template <class Fn>
+void for_each_tap(const CubeShadowMap& map, const PointLight& light, int face, vec2 st, int pcf,
+                  Fn&& fn) {
+  const int res = map.res;
+  if (pcf <= 1) {
+    fn(face, clamp_texel(st.x, res), clamp_texel(st.y, res), 1.0f);
+    return;
+  }
+  const float gx = st.x - 0.5f, gy = st.y - 0.5f;
+  const int bx = int(std::floor(gx)), by = int(std::floor(gy));
+  const float fx = gx - float(bx), fy = gy - float(by);
+  const int half = (pcf - 1) / 2;
+  const float norm = 1.0f / float(pcf * pcf);
+  for (int j = 0; j <= pcf; ++j) {
+    const float wy = j == 0 ? 1.0f - fy : (j == pcf ? fy : 1.0f);
+    for (int i = 0; i <= pcf; ++i) {
+      const float wx = i == 0 ? 1.0f - fx : (i == pcf ? fx : 1.0f);
+      const float w = wx * wy * norm;
+      if (w == 0.0f) continue;
+      const int tx = bx - half + i, ty = by - half + j;
+      if (tx >= 0 && ty >= 0 && tx < res && ty < res) {
+        fn(face, tx, ty, w);
+        continue;
+      }
+      // Cross-face tap: the texel centre's direction picks the owning face.
+      const float u = (float(tx) + 0.5f) / float(res) * 2.0f - 1.0f;
+      const float v = 1.0f - (float(ty) + 0.5f) / float(res) * 2.0f;
+      const vec3 dir = cube_face_direction(face, u, v);
+      const int f2 = cube_face_of(dir);
+      const vec2 st2 = face_texel_coords(map.view_proj[f2], light.position + dir, res);
+      fn(f2, clamp_texel(st2.x, res), clamp_texel(st2.y, res), w);
+    }
+  }
+}
+
+}  // namespace
+
+CubeShadowParams parse_cube_params(const TechniqueSpec& spec, const char* flag) {
+  SpecReader r(spec, flag);
+  CubeShadowParams p;
+  p.res = r.get_int("res", p.res, 1, 8192);
+  p.pcf = r.get_int("pcf", p.pcf, 1, 15);
+  p.bias = float(r.get_double("bias", p.bias, 0.0, 1e3));
+  p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
+  r.reject_unknown();
+  if (p.pcf > 1 && p.pcf % 2 == 0)
+    throw InputError(flag, spec.name + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
+  return p;
+}
+
+static void set_view_projs(const PointLight& light, CubeShadowMap& map) {
+  const mat4 proj = cube_face_projection(light);
+  for (int f = 0; f < kCubeFaces; ++f) map.view_proj[f] = proj * cube_face_view(light, f);
+}
+
+std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer& g,
+                                               const CubeShadowParams& p) {
+  CubeShadowMap probe;
+  probe.res = p.res;
+  set_view_projs(scene.light, probe);
+  // Per-chunk flags, merged in chunk order.
+  const size_t grain = 8192;
+  const size_t chunks = (g.pixel_count() + grain - 1) / grain;
+  std::vector<std::array<bool, kCubeFaces>> flags(chunks, std::array<bool, kCubeFaces>{});
+  parallel_for_chunks(g.pixel_count(), grain, [&](size_t b, size_t e) {
+    std::array<bool, kCubeFaces>& f = flags[b / grain];
+    for (size_t i = b; i < e; ++i) {
+      if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
+      const vec3 dir = g.position[i] - scene.light.position;
+      const int face = cube_face_of(dir);
+      if (p.pcf <= 1) {
+        f[face] = true;
+        continue;
+      }
+      const vec2 st = face_texel_coords(probe.view_proj[face], g.position[i], p.res);
+      for_each_tap(probe, scene.light, face, st, p.pcf,
+                   [&](int ff, int, int, float) { f[ff] = true; });
+    }
+  });
+  std::array<bool, kCubeFaces> needed{};
+  for (const auto& f : flags)
+    for (int i = 0; i < kCubeFaces; ++i) needed[i] = needed[i] || f[i];
+  return needed;
+}
+
+void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& needed, int res,
+                     CubeShadowMap& map, size_t* submitted, size_t* culled) {
+  map.res = res;
+  set_view_projs(scene.light, map);
+  const std::vector<MeshView> meshes = scene_mesh_views(scene);
+  const float inv_far = 1.0f / scene.light.far;
+  DepthTarget target;
+  DepthOnlyShader shader;
+  for (int f = 0; f < kCubeFaces; ++f) {
+    map.rendered[f] = needed[f];
+    if (!needed[f]) {
+      map.depth[f].clear();
+      continue;
+    }
+    const RasterStats st = rasterize(meshes, map.view_proj[f], CullMode::None, res, res, target, shader);
+    if (submitted) *submitted += st.triangles_in;
+    if (culled) *culled += st.culled_frustum;
+    // 1/w → radial distance: the ray through texel centre (u, v) has direction (u, v, -1) in
+    // view space (tan 45° = 1), so |p - L| = view depth × sqrt(1 + u² + v²).
+    std::vector<float>& out = map.depth[f];
+    out.resize(size_t(res) * size_t(res));
+    parallel_for_chunks(size_t(res), 16, [&](size_t y0, size_t y1) {
+      for (size_t y = y0; y < y1; ++y) {
+        const float v = 1.0f - (float(y) + 0.5f) / float(res) * 2.0f;
+        for (int x = 0; x < res; ++x) {
+          const size_t i = y * size_t(res) + size_t(x);
+          const float iw = target.inv_w[i];
+          if (iw <= 0.0f) {
+            out[i] = kInf;
+            continue;
+          }
+          const float u = (float(x) + 0.5f) / float(res) * 2.0f - 1.0f;
+          out[i] = std::sqrt(1.0f + u * u + v * v) / iw * inv_far;
+        }
+      }
+    });
+  }
+}
+
+void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& map,
+                     const CubeShadowParams& p, ImageF& mask, ImageU32* texels) {
+  const PointLight& light = scene.light;
+  mask = ImageF(g.width, g.height, 1, 1.0f);
+  if (texels) *texels = ImageU32(g.width, g.height, 1, kNoTexel);
+  const int res = map.res;
+  const float inv_far = 1.0f / light.far;
+  // World size of one texel at unit distance along the face axis (face spans [-1, 1]).
+  const float texel_angle = 2.0f / float(res);
+  parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      if (!g.covered[i]) continue;
+      if (!faces_light(g, i, light.position)) {
+        mask.data[i] = 0.0f;
+        continue;
+      }
+      const vec3 to_p = g.position[i] - light.position;
+      const float dist = glm::length(to_p);
+      if (dist <= 0.0f) continue;  // a receiver at the light itself is lit
+      const int face = cube_face_of(to_p);
+      const vec2 st = face_texel_coords(map.view_proj[face], g.position[i], res);
+      if (texels)
+        texels->data[i] = uint32_t(face) * uint32_t(res) * uint32_t(res) +
+                          uint32_t(clamp_texel(st.y, res)) * uint32_t(res) +
+                          uint32_t(clamp_texel(st.x, res));
+      // Bias in metres, then normalised like the stored distances.
+      const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p) / dist, 1e-4f, 1.0f);
+      const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 4.0f);
+      const float bias = p.bias + p.slope * texel_angle * dist * tan_t;
+      const float receiver = (dist - bias) * inv_far;
+      float vis = 0.0f;
+      for_each_tap(map, light, face, st, p.pcf, [&](int f, int x, int y, float w) {
+        if (receiver <= map.depth[f][size_t(y) * size_t(res) + size_t(x)]) vis += w;
+      });
+      mask.data[i] = std::min(vis, 1.0f);
+    }
+  });
+}
+
+ShadowResult run_cube_shadow_map(const TechniqueSpec& spec, const Scene& scene,
+                                 const GBuffer& gbuffer, const RunOptions& options) {
+  const CubeShadowParams p = parse_cube_params(spec, options.flag);
+  ShadowResult r;
+  r.faces_total = kCubeFaces;
+  CubeShadowMap map;
+  std::array<bool, kCubeFaces> needed{};
+  std::vector<double> map_t, lookup_t;
+  for (int rep = 0; rep < std::max(1, options.repeats); ++rep) {
+    size_t submitted = 0, culled = 0;
+    auto t0 = std::chrono::steady_clock::now();
+    needed = cube_faces_needed(scene, gbuffer, p);
+    render_cube_map(scene, needed, p.res, map, &submitted, &culled);
+    map_t.push_back(ms_since(t0));
+    t0 = std::chrono::steady_clock::now();
+    lookup_cube_map(scene, gbuffer, map, p, r.mask, options.want_texels ? &r.texels : nullptr);
+    lookup_t.push_back(ms_since(t0));
+    r.triangles_submitted = submitted;
+    r.triangles_culled = culled;
+  }
+  r.map_ms = median(map_t);
+  r.lookup_ms = median(lookup_t);
+  for (bool n : needed) r.faces_needed += n ? 1 : 0;
+  r.faces_rendered = r.faces_needed;
+  r.notes = "faces " + std::to_string(r.faces_rendered) + "/6 rendered, " +
+            std::to_string(r.triangles_culled) + " of " + std::to_string(r.triangles_submitted) +
+            " triangle submissions culled before binning";
+  return r;
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,61 @@
+#include "techniques/technique.h"
+
+#include "core/error.h"
+#include "techniques/cube_shadow_map.h"
+#include "techniques/ray_traced.h"
+
+namespace shadowlab {
+namespace {
+
+using RunFn = ShadowResult (*)(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&);
+
+struct Entry {
+  const char* name;
+  const char* description;
+  RunFn run;
+};
+
+// The registry: one line per technique.
+const Entry kTechniques[] = {
+    {"rt", "Embree ray tracing (reference): rt:spp=256,hard=0,seed=1", run_ray_traced},
+    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1", run_cube_shadow_map},
+};
+
+const Entry& find(const TechniqueSpec& spec, const char* flag) {
+  for (const Entry& e : kTechniques)
+    if (spec.name == e.name) return e;
+  std::string known;
+  for (const Entry& e : kTechniques) known += std::string(known.empty() ? "" : ", ") + e.name;
+  throw InputError(flag, "unknown technique '" + spec.name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
+                           const RunOptions& options) {
+  return find(spec, options.flag).run(spec, scene, gbuffer, options);
+}
+
+void validate_technique(const TechniqueSpec& spec, const char* flag) {
+  const Entry& e = find(spec, flag);
+  if (e.run == run_cube_shadow_map) parse_cube_params(spec, flag);
+  if (e.run == run_ray_traced) {
+    SpecReader r(spec, flag);
+    r.get_int("spp", 256, 1, 1 << 20);
+    r.get_bool("hard", false);
+    r.get_int("seed", 1, 0, 1 << 30);
+    r.reject_unknown();
+  }
+}
+
+std::vector<std::pair<std::string, std::string>> technique_list() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const Entry& e : kTechniques) out.emplace_back(e.name, e.description);
+  return out;
+}
+
+bool faces_light(const GBuffer& g, size_t pixel, const vec3& light_pos) {
+  return glm::dot(g.geo_normal[pixel], light_pos - g.position[pixel]) > 0.0f;
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,52 @@
+#pragma once
+// The technique interface: every technique (shadow maps and the ray tracer alike) turns a
+// scene and its camera-pass GBuffer into a ShadowResult, evaluated at the GBuffer's surface
+// points. A registry maps a spec's name to an implementation.
+#include <string>
+#include <vector>
+
+#include "core/gbuffer.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "techniques/technique_spec.h"
+
+namespace shadowlab {
+
+// What a technique returns. Mask convention (design.md §4): visibility in [0,1], 1 where no
+// geometry, 0 where the geometric normal faces away from the light.
+struct ShadowResult {
+  ImageF mask;
+  ImageU32 texels;            // texel index per pixel (kNoTexel where none); empty: no map
+  double map_ms = 0.0;        // median time of building the light-space maps
+  double lookup_ms = 0.0;     // median time of the per-pixel lookup / ray pass
+  int faces_total = 0;        // faces of the layout (6 for a cube map)
+  int faces_needed = 0;       // faces some pixel's lookup touches
+  int faces_rendered = 0;     // faces actually rendered (== needed)
+  size_t triangles_submitted = 0;  // summed over rendered faces
+  size_t triangles_culled = 0;     // rejected before binning (outside a face's frustum)
+  bool from_cache = false;    // the reference came from the disk cache (timings then 0)
+  std::string notes;          // one-line human summary of what was skipped or reused
+  double shadow_ms() const { return map_ms + lookup_ms; }
+};
+
+// Options that are not part of a technique's identity.
+struct RunOptions {
+  int repeats = 1;              // timing repeats; the result is the median
+  bool want_texels = true;      // produce the texel-index image (for the detail score)
+  std::string cache_dir;        // reference cache folder; empty = no cache
+  const char* flag = "--technique";  // where the spec came from, for error messages
+};
+
+// Runs the technique named by spec (throws InputError for an unknown name or parameter).
+ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
+                           const RunOptions& options);
+// Checks a spec without running it (name and every parameter), throwing like run_technique.
+void validate_technique(const TechniqueSpec& spec, const char* flag);
+// Registered technique names with one-line descriptions, for --help.
+std::vector<std::pair<std::string, std::string>> technique_list();
+
+// Shared rule for receivers: true when the pixel holds a surface that faces the light
+// (geometric N·L > 0).
+bool faces_light(const GBuffer& g, size_t pixel, const vec3& light_pos);
+
+}  // namespace shadowlab

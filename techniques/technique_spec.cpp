@@ -1,0 +1,111 @@
+#include "techniques/technique_spec.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "core/error.h"
+
+namespace shadowlab {
+
+TechniqueSpec parse_technique_spec(const std::string& text, const std::string& flag) {
+  TechniqueSpec spec;
+  const size_t colon = text.find(':');
+  spec.name = text.substr(0, colon);
+  if (spec.name.empty()) throw InputError(flag, "empty technique name in '" + text + "'");
+  if (colon != std::string::npos) {
+    const std::string rest = text.substr(colon + 1);
+    size_t pos = 0;
+    while (pos <= rest.size()) {
+      const size_t comma = std::min(rest.find(',', pos), rest.size());
+      const std::string item = rest.substr(pos, comma - pos);
+      const size_t eq = item.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+        throw InputError(flag, "expected key=value in '" + text + "', got '" + item + "'");
+      const std::string key = item.substr(0, eq);
+      if (spec.params.count(key)) throw InputError(flag, "parameter '" + key + "' given twice");
+      spec.params[key] = item.substr(eq + 1);
+      pos = comma + 1;
+    }
+  }
+  spec.text = spec_text(spec);
+  return spec;
+}
+
+std::string spec_text(const TechniqueSpec& spec) {
+  std::string text = spec.name;
+  char sep = ':';
+  for (const auto& [k, v] : spec.params) {
+    text += sep + k + "=" + v;
+    sep = ',';
+  }
+  return text;
+}
+
+std::vector<std::string> split_spec_list(const std::string& text) {
+  std::vector<std::string> out;
+  size_t pos = 0;
+  while (pos <= text.size()) {
+    const size_t comma = std::min(text.find(',', pos), text.size());
+    const std::string token = text.substr(pos, comma - pos);
+    const bool continues = token.find('=') != std::string::npos &&
+                           token.find(':') == std::string::npos && !out.empty();
+    if (continues)
+      out.back() += "," + token;
+    else if (!token.empty())
+      out.push_back(token);
+    pos = comma + 1;
+  }
+  return out;
+}
+
+SpecReader::SpecReader(const TechniqueSpec& spec, std::string flag)
+    : spec_(spec), flag_(std::move(flag)) {}
+
+double SpecReader::get_double(const std::string& key, double fallback, double lo, double hi) {
+  used_.push_back(key);
+  const auto it = spec_.params.find(key);
+  if (it == spec_.params.end()) return fallback;
+  const char* s = it->second.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s, &end);
+  if (end == s || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    throw InputError(flag_, spec_.name + ": '" + key + "' expects a number, got '" + it->second + "'");
+  if (v < lo || v > hi)
+    throw InputError(flag_, spec_.name + ": '" + key + "' = " + it->second + " is outside [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
+int SpecReader::get_int(const std::string& key, int fallback, int lo, int hi) {
+  used_.push_back(key);
+  const auto it = spec_.params.find(key);
+  if (it == spec_.params.end()) return fallback;
+  const char* s = it->second.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s, &end, 10);
+  if (end == s || *end != '\0' || errno == ERANGE)
+    throw InputError(flag_, spec_.name + ": '" + key + "' expects an integer, got '" + it->second + "'");
+  if (v < lo || v > hi)
+    throw InputError(flag_, spec_.name + ": '" + key + "' = " + it->second + " is outside [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return int(v);
+}
+
+bool SpecReader::get_bool(const std::string& key, bool fallback) {
+  return get_int(key, fallback ? 1 : 0, 0, 1) != 0;
+}
+
+void SpecReader::reject_unknown() const {
+  for (const auto& [k, v] : spec_.params)
+    if (std::find(used_.begin(), used_.end(), k) == used_.end()) {
+      std::string known;
+      for (const std::string& u : used_) known += (known.empty() ? "" : ", ") + u;
+      throw InputError(flag_, spec_.name + ": unknown parameter '" + k + "' (known: " + known + ")");
+    }
+}
+
+}  // namespace shadowlab
