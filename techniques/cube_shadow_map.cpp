@@ -160,6 +160,9 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
   const float inv_far = 1.0f / light.far;
   // World size of one texel at unit distance along the face axis (face spans [-1, 1]).
   const float texel_angle = 2.0f / float(res);
+  // PCF compares the receiver's depth with texels up to (pcf+1)/2 texels away, on a plane
+  // tilted by the angle to the light, so the slope term grows with the footprint radius.
+  const float footprint = 0.5f * float(p.pcf + 1);
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i]) continue;
@@ -179,13 +182,16 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
       // Bias in metres, then normalised like the stored distances.
       const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p) / dist, 1e-4f, 1.0f);
       const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 4.0f);
-      const float bias = p.bias + p.slope * texel_angle * dist * tan_t;
+      const float bias = p.bias + p.slope * footprint * texel_angle * dist * tan_t;
       const float receiver = (dist - bias) * inv_far;
-      float vis = 0.0f;
+      // Lit weight over total weight: both sums see the same additions, so an all-lit
+      // footprint gives exactly 1 whatever the float rounding of the weights.
+      float lit = 0.0f, total = 0.0f;
       for_each_tap(map, light, face, st, p.pcf, [&](int f, int x, int y, float w) {
-        if (receiver <= map.depth[f][size_t(y) * size_t(res) + size_t(x)]) vis += w;
+        total += w;
+        lit += receiver <= map.depth[f][size_t(y) * size_t(res) + size_t(x)] ? w : 0.0f;
       });
-      mask.data[i] = std::min(vis, 1.0f);
+      mask.data[i] = total > 0.0f ? std::min(lit / total, 1.0f) : 1.0f;
     }
   });
 }

@@ -7,8 +7,8 @@
 //          bilinear-weighted (an (N+1)² texel footprint); taps leaving a face are looked up in
 //          the neighbouring face through their direction (no seams)
 //   bias   constant depth bias, metres
-//   slope  slope-scaled bias: slope × texel footprint at the receiver × tan(angle to light)
-//          (tan clamped to 4), metres
+//   slope  slope-scaled bias: slope × texel size at the receiver × tan(angle to light)
+//          (tan clamped to 4) × (pcf + 1)/2 (the filter's reach in texels), metres
 #include <array>
 #include <vector>
 

@@ -1,0 +1,107 @@
+// The experiment executables end to end: bad input gives one line on stderr naming the flag or
+// file and exit code 2; good input writes the promised files.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "../test_paths.h"
+
+namespace shadowlab {
+namespace {
+
+struct ProcResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs build/experiments/<cmd> with args, capturing stdout and stderr.
+ProcResult run(const std::string& cmd) {
+  const std::string err_path = test::binary_path("mains_stderr.txt");
+  const std::string full = std::string(SHADOWLAB_BINARY_DIR) + "/experiments/" + cmd + " 2>" + err_path;
+  ProcResult r;
+  FILE* p = popen(full.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream f(err_path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+void expect_clear_error(const std::string& cmd, const std::string& needle) {
+  const ProcResult r = run(cmd);
+  EXPECT_EQ(r.exit_code, 2) << cmd << "\nstderr: " << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << cmd << "\nstderr: " << r.err;
+  // One line: exactly one newline, at the end.
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << cmd << "\nstderr: " << r.err;
+}
+
+TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
+  const std::string out = test::binary_path("bad_input_out");
+  expect_clear_error("render --technique csm --out " + out + " --bogus", "--bogus: unknown flag");
+  expect_clear_error("render --technique nosuch --out " + out, "unknown technique 'nosuch'");
+  expect_clear_error("render --technique csm:res=0 --out " + out, "res");
+  expect_clear_error("render --technique csm --out " + out + " --width 0", "--width");
+  expect_clear_error("render --technique csm --out " + out + " --width 99999999", "--width");
+  expect_clear_error("render --technique csm --out " + out + " --threads 0", "--threads");
+  expect_clear_error("render --technique csm --out " + out + " --scene /no/such/model.obj",
+                     "/no/such/model.obj");
+  expect_clear_error("render --technique csm --out " + out + " --scene nosuchscene", "nosuchscene");
+  expect_clear_error("render --technique csm --out " + out + " --light-radius -1", "--light-radius");
+  expect_clear_error("resolution_sweep --resolutions 128,0 --out " + out, "--resolutions");
+  expect_clear_error("resolution_sweep --spp abc --out " + out, "--spp");
+  expect_clear_error("metric /no/such/test.exr /no/such/ref.exr", "/no/such/test.exr");
+  expect_clear_error("metric only_one.exr", "two files");
+}
+
+TEST(Mains, RenderWritesMaskTexelsAndTiming) {
+  const std::string out = test::binary_path("render_out");
+  std::filesystem::remove_all(out);
+  const ProcResult r = run("render --technique csm:res=64 --width 64 --height 48 --repeats 1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"mask.exr", "mask.png", "texel.exr", "timing.json"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  // The metric of a mask against itself is perfect, and --json carries every key.
+  const ProcResult m = run("metric " + out + "/mask.exr " + out + "/mask.exr --texels " + out +
+                    "/texel.exr --json");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const nlohmann::json j = nlohmann::json::parse(m.out);
+  for (const char* k : {"c10", "c50", "c90", "dark", "lit", "acne", "noise", "ssim"})
+    EXPECT_DOUBLE_EQ(j.at(k).get<double>(), 1.0) << k;
+  EXPECT_DOUBLE_EQ(j.at("rmse").get<double>(), 0.0);
+  // A 64² map seen by 64×48 pixels gives texels shared by several pixels: detail < 1, and the
+  // total is the mean of fidelity (1), aesthetics (1) and detail (no timings given).
+  const double detail = j.at("detail").get<double>();
+  EXPECT_GT(detail, 0.0);
+  EXPECT_LT(detail, 1.0);
+  EXPECT_NEAR(j.at("total").get<double>(), (2.0 + detail) / 3.0, 1e-6);
+  EXPECT_TRUE(j.contains("psnr"));
+}
+
+TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
+  const std::string out = test::binary_path("sweep_out");
+  const ProcResult r = run("resolution_sweep --quick --width 96 --height 72 --spp 16 --repeats 1 "
+                    "--resolutions 32,256 --no-cache --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("RT 16spp            1.000  1.000  1.000  1.000  1.000  1.000  1.000   1.000"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("CSM 32"), std::string::npos);
+  EXPECT_NE(r.out.find("CSM 256"), std::string::npos);
+  for (const char* f : {"sweep.csv", "sweep.json", "reference_mask.exr", "csm_256_mask.exr"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+}
+
+}  // namespace
+}  // namespace shadowlab

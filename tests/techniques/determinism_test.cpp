@@ -1,0 +1,44 @@
+// Output never depends on the thread count: camera pass, cube map and the Embree reference.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "core/parallel.h"
+#include "test_scenes.h"
+
+namespace shadowlab {
+namespace {
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
+  const Scene scene = test::small_scene("default", 200, 150);
+  struct Out {
+    GBuffer g;
+    ShadowResult csm, soft;
+  };
+  std::vector<Out> outs;
+  for (int threads : {1, 2, 7}) {
+    set_thread_count(threads);
+    Out o;
+    o.g = render_gbuffer(scene);
+    o.csm = test::run("csm:res=256,pcf=3", scene, o.g);
+    o.soft = test::run("rt:spp=16", scene, o.g);
+    outs.push_back(std::move(o));
+  }
+  set_thread_count(2);
+  for (size_t i = 1; i < outs.size(); ++i) {
+    EXPECT_TRUE(same_bytes(outs[0].g.position, outs[i].g.position));
+    EXPECT_TRUE(same_bytes(outs[0].g.prim_id, outs[i].g.prim_id));
+    EXPECT_TRUE(same_bytes(outs[0].g.depth, outs[i].g.depth));
+    EXPECT_TRUE(same_bytes(outs[0].csm.mask.data, outs[i].csm.mask.data));
+    EXPECT_TRUE(same_bytes(outs[0].csm.texels.data, outs[i].csm.texels.data));
+    EXPECT_TRUE(same_bytes(outs[0].soft.mask.data, outs[i].soft.mask.data));
+  }
+}
+
+}  // namespace
+}  // namespace shadowlab
