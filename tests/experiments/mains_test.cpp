@@ -90,6 +90,35 @@ TEST(Mains, RenderWritesMaskTexelsAndTiming) {
   EXPECT_TRUE(j.contains("psnr"));
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// A whole `render` (camera pass, technique, EXR writing) gives identical files for 1, 2 and 7
+// threads, for a shadow map and for the soft Embree reference.
+TEST(Mains, RenderIsIdenticalForOneTwoAndSevenThreads) {
+  for (const std::string spec : {"csm:res=128,pcf=3", "rt:spp=8"}) {
+    std::vector<std::string> masks, texels;
+    for (int threads : {1, 2, 7}) {
+      const std::string out = test::binary_path("render_threads_" + std::to_string(threads));
+      std::filesystem::remove_all(out);
+      const ProcResult r = run("render --technique " + spec + " --width 120 --height 90 --repeats 1 "
+                               "--no-cache --threads " + std::to_string(threads) + " --out " + out);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      masks.push_back(file_bytes(out + "/mask.exr"));
+      texels.push_back(file_bytes(out + "/texel.exr"));
+    }
+    ASSERT_FALSE(masks[0].empty());
+    EXPECT_EQ(masks[0], masks[1]) << spec;
+    EXPECT_EQ(masks[0], masks[2]) << spec;
+    EXPECT_EQ(texels[0], texels[1]) << spec;
+    EXPECT_EQ(texels[0], texels[2]) << spec;
+  }
+}
+
 TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   const std::string out = test::binary_path("sweep_out");
   const ProcResult r = run("resolution_sweep --quick --width 96 --height 72 --spp 16 --repeats 1 "
