@@ -181,7 +181,7 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
                           uint32_t(clamp_texel(st.x, res));
       // Bias in metres, then normalised like the stored distances.
       const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p) / dist, 1e-4f, 1.0f);
-      const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 4.0f);
+      const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 10.0f);
       const float bias = p.bias + p.slope * footprint * texel_angle * dist * tan_t;
       const float receiver = (dist - bias) * inv_far;
       // Lit weight over total weight: both sums see the same additions, so an all-lit

@@ -8,7 +8,7 @@
 //          the neighbouring face through their direction (no seams)
 //   bias   constant depth bias, metres
 //   slope  slope-scaled bias: slope × texel size at the receiver × tan(angle to light)
-//          (tan clamped to 4) × (pcf + 1)/2 (the filter's reach in texels), metres
+//          (tan clamped to 10, i.e. N·L >= 0.1) × (pcf + 1)/2 (the filter's reach in texels), metres
 #include <array>
 #include <vector>
 
