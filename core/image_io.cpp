@@ -1,0 +1,171 @@
+#include "core/image_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+// The stb implementation lives in libstb.so (linked through PkgConfig::STB): declarations only.
+#include <stb_image_write.h>
+
+#include "core/texture.h"
+
+namespace shadowlab {
+namespace {
+
+const char* pixel_type_name(Imf::PixelType t) {
+  switch (t) {
+    case Imf::UINT:
+      return "UINT";
+    case Imf::HALF:
+      return "HALF";
+    case Imf::FLOAT:
+      return "FLOAT";
+    default:
+      return "unknown";
+  }
+}
+
+// Fails with "cannot open: <strerror>" before OpenEXR gets a chance to word it differently.
+void require_readable(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::fclose(f);
+}
+
+// Writes one channel `name` of type `type` from a width × height plane of T.
+template <class T>
+void write_exr_channel(const std::string& path, const Image<T>& img, const char* name,
+                       Imf::PixelType type) {
+  SL_CHECK_EQ(img.channels, 1);
+  SL_CHECK_EQ(img.data.size(), img.pixel_count());
+  if (img.empty())
+    throw InputError(path, "cannot write an empty " + std::to_string(img.width) + "x" +
+                               std::to_string(img.height) + " image");
+  try {
+    Imf::Header header(img.width, img.height);
+    header.compression() = Imf::ZIP_COMPRESSION;  // lossless: round trips are bit-exact
+    header.channels().insert(name, Imf::Channel(type));
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer fb;
+    fb.insert(name, Imf::Slice(type, reinterpret_cast<char*>(const_cast<T*>(img.data.data())),
+                               sizeof(T), sizeof(T) * size_t(img.width)));
+    file.setFrameBuffer(fb);
+    file.writePixels(img.height);
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot write EXR: ") + e.what());
+  }
+}
+
+// Reads channel `name`, which must exist and have exactly type `type`.
+template <class T>
+Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelType type) {
+  require_readable(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imf::Channel* ch = header.channels().findChannel(name);
+    if (!ch) {
+      std::string present;
+      for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+        present += std::string(present.empty() ? "" : ", ") + it.name();
+      throw InputError(path, std::string("no channel '") + name +
+                                 "' (channels: " + (present.empty() ? "none" : present) + ")");
+    }
+    if (ch->type != type)
+      throw InputError(path, std::string("channel '") + name + "' has type " +
+                                 pixel_type_name(ch->type) + ", expected " + pixel_type_name(type));
+    if (ch->xSampling != 1 || ch->ySampling != 1)
+      throw InputError(path, std::string("channel '") + name + "' is subsampled");
+    const Imath::Box2i dw = header.dataWindow();
+    const long long w = (long long)dw.max.x - dw.min.x + 1;
+    const long long h = (long long)dw.max.y - dw.min.y + 1;
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+      throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
+                                 " is outside [1, " + std::to_string(kMaxImageSide) + "]");
+    Image<T> img(int(w), int(h), 1);
+    Imf::FrameBuffer fb;
+    // Slice::Make offsets the base pointer by the data window origin without overflow.
+    fb.insert(name, Imf::Slice::Make(type, img.data.data(), dw, sizeof(T), sizeof(T) * size_t(w)));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    return img;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot read EXR: ") + e.what());
+  }
+}
+
+// Writes a PNG through stb's in-memory encoder so file errors can be reported with strerror.
+void write_png(const std::string& path, int w, int h, int comp, const std::vector<uint8_t>& px) {
+  if (w < 1 || h < 1)
+    throw InputError(
+        path, "cannot write an empty " + std::to_string(w) + "x" + std::to_string(h) + " image");
+  std::vector<unsigned char> encoded;
+  auto sink = [](void* ctx, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (!stbi_write_png_to_func(sink, &encoded, w, h, comp, px.data(), w * comp))
+    throw InputError(path, "PNG encoding failed");
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw InputError(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  const size_t written = std::fwrite(encoded.data(), 1, encoded.size(), f);
+  const int write_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (written != encoded.size() || !closed)
+    throw InputError(path, std::string("cannot write: ") + std::strerror(write_errno));
+}
+
+}  // namespace
+
+void write_exr_mask(const std::string& path, const ImageF& mask) {
+  write_exr_channel(path, mask, "Y", Imf::FLOAT);
+}
+
+ImageF read_exr_mask(const std::string& path) {
+  return read_exr_channel<float>(path, "Y", Imf::FLOAT);
+}
+
+void write_exr_texels(const std::string& path, const ImageU32& texels) {
+  write_exr_channel(path, texels, "texel", Imf::UINT);
+}
+
+ImageU32 read_exr_texels(const std::string& path) {
+  return read_exr_channel<uint32_t>(path, "texel", Imf::UINT);
+}
+
+void write_png_grey(const std::string& path, const ImageF& image) {
+  SL_CHECK_EQ(image.channels, 1);
+  std::vector<uint8_t> px(image.pixel_count());
+  for (size_t i = 0; i < px.size(); ++i) px[i] = linear_to_srgb8(image.data[i]);
+  write_png(path, image.width, image.height, 1, px);
+}
+
+void write_png_rgb(const std::string& path, const ImageF& image) {
+  SL_CHECK_EQ(image.channels, 3);
+  // Planar → interleaved RGB.
+  std::vector<uint8_t> px(image.pixel_count() * 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        px[(size_t(y) * size_t(image.width) + size_t(x)) * 3 + size_t(c)] =
+            linear_to_srgb8(image.at(x, y, c));
+  write_png(path, image.width, image.height, 3, px);
+}
+
+ImageF load_texture_rgba(const std::string& path) {
+  return texture_to_linear_rgba(load_texture8(path));
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,30 @@
+#pragma once
+// Procedural geometry for built-in scenes and tests. Every builder appends positions, per-vertex
+// normals and indices to a Mesh (no uvs), with triangles counter-clockwise seen from the front
+// side: the side the normal points to (outward for solids). Units: metres.
+#include "core/math.h"
+#include "core/scene.h"
+
+namespace shadowlab {
+
+// Planar rectangle origin + s·edge_u + t·edge_v, s, t in [0, 1], split into nu × nv quads
+// (2 triangles each). Front side and flat normal: normalize(cross(edge_u, edge_v)).
+void add_grid_quad(Mesh& mesh, vec3 origin, vec3 edge_u, vec3 edge_v, int nu, int nv);
+
+// Box = the unit cube [-0.5, 0.5]³ mapped by `model` (scale, rotate, translate; determinant
+// > 0). 24 vertices (flat normals per face), 12 triangles, outward.
+void add_box(Mesh& mesh, const mat4& model);
+
+// UV sphere around `centre`: `segments` around the y axis, `rings` from pole to pole; smooth
+// normals. Triangles: 2·segments·(rings − 1).
+void add_uv_sphere(Mesh& mesh, vec3 centre, float radius, int segments, int rings);
+
+// Closed cylinder along +y from `base` (centre of the bottom cap) to base + (0, height, 0):
+// smooth side normals, flat caps. Triangles: 4·segments.
+void add_cylinder(Mesh& mesh, vec3 base, float radius, float height, int segments);
+
+// Signed volume of a mesh (m³): positive when a closed mesh's triangles face outward,
+// negative when they face inward (a room seen from inside).
+double signed_volume(const Mesh& mesh);
+
+}  // namespace shadowlab

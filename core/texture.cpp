@@ -1,0 +1,98 @@
+#include "core/texture.h"
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+// The stb implementation lives in libstb.so (linked through PkgConfig::STB): declarations only.
+#include <stb_image.h>
+
+#include "core/error.h"
+
+namespace shadowlab {
+namespace {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+std::array<float, 256> make_srgb_table() {
+  std::array<float, 256> t{};
+  for (int i = 0; i < 256; ++i) t[size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+  return t;
+}
+
+// Wraps a texture coordinate into [0, 1); non-finite values become 0.
+float wrap01(float t) {
+  if (!std::isfinite(t)) return 0.0f;
+  const float f = t - std::floor(t);
+  return f < 1.0f ? f : 0.0f;  // t - floor(t) can round up to 1 for tiny negative t
+}
+
+}  // namespace
+
+Texture8 load_texture8(const std::string& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_file(file.get(), &w, &h, &comp))
+    throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
+  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+    throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
+                               " is outside [1, " + std::to_string(kMaxImageSide) + "]");
+  int lw = 0, lh = 0, lcomp = 0;
+  stbi_uc* pixels = stbi_load_from_file(file.get(), &lw, &lh, &lcomp, 4);
+  if (!pixels) throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
+  Texture8 tex;
+  tex.width = lw;
+  tex.height = lh;
+  tex.file_channels = lcomp;
+  tex.rgba.assign(pixels, pixels + size_t(lw) * size_t(lh) * 4);
+  stbi_image_free(pixels);
+  return tex;
+}
+
+float srgb_to_linear(float s) {
+  return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float l) {
+  return l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+}
+
+uint8_t linear_to_srgb8(float l) {
+  if (!(l > 0.0f)) return 0;  // also NaN
+  if (l >= 1.0f) return 255;
+  return uint8_t(std::lround(linear_to_srgb(l) * 255.0f));
+}
+
+float srgb8_to_linear(uint8_t code) {
+  static const std::array<float, 256> table = make_srgb_table();
+  return table[code];
+}
+
+ImageF texture_to_linear_rgba(const Texture8& tex) {
+  ImageF img(tex.width, tex.height, 4);
+  for (int y = 0; y < tex.height; ++y)
+    for (int x = 0; x < tex.width; ++x) {
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = srgb8_to_linear(tex.at(x, y, c));
+      img.at(x, y, 3) = float(tex.at(x, y, 3)) / 255.0f;
+    }
+  return img;
+}
+
+float sample_alpha(const ImageF& rgba, vec2 uv) {
+  SL_CHECK(rgba.channels == 4 && !rgba.empty());
+  const int w = rgba.width, h = rgba.height;
+  int x = int(wrap01(uv.x) * float(w));
+  int row_from_bottom = int(wrap01(uv.y) * float(h));
+  if (x >= w) x = w - 1;
+  if (row_from_bottom >= h) row_from_bottom = h - 1;
+  return rgba.at(x, h - 1 - row_from_bottom, 3);
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,55 @@
+#pragma once
+// Texture files and the one alpha lookup shared by the rasterizer and the Embree reference
+// (both passes must discard exactly the same fragments).
+//
+// Conventions: texture images follow Image<T> (origin top-left, row 0 = the first row stored in
+// the file). OBJ texture coordinates have v pointing up, so uv (0, 0) is the bottom-left corner
+// of the image and uv (1, 1) the top-right one. Lookups wrap (repeat) and take the nearest
+// texel: texel column floor(frac(u) * W), texel row (from the bottom) floor(frac(v) * H).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/math.h"
+
+namespace shadowlab {
+
+// An 8-bit texture as decoded by stb, always expanded to 4 interleaved channels (RGBA; a file
+// without alpha gets alpha 255, a grey file gets R = G = B = grey).
+struct Texture8 {
+  int width = 0;
+  int height = 0;
+  int file_channels = 0;      // channels stored in the file: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
+  std::vector<uint8_t> rgba;  // interleaved RGBA, row-major, top row first
+
+  bool file_has_alpha() const { return file_channels == 2 || file_channels == 4; }
+  uint8_t at(int x, int y, int c) const {
+    return rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
+  }
+};
+
+// Loads a PNG/JPG/TGA/BMP (anything stb_image decodes; 16-bit files are reduced to 8 bits).
+// Throws InputError(path, "cannot open: <strerror>") or InputError(path, "cannot decode ...").
+Texture8 load_texture8(const std::string& path);
+
+// sRGB transfer functions on [0, 1] (IEC 61966-2-1 piecewise curve).
+float srgb_to_linear(float srgb);
+float linear_to_srgb(float linear);
+// Linear value → 8-bit sRGB code: clamps to [0, 1] (NaN → 0) and rounds to nearest.
+uint8_t linear_to_srgb8(float linear);
+// Exact sRGB → linear for an 8-bit code (table lookup).
+float srgb8_to_linear(uint8_t code);
+
+// Planar 4-channel ImageF from an 8-bit texture: R, G, B converted sRGB → linear, alpha = A/255
+// as stored (alpha is never gamma-decoded).
+ImageF texture_to_linear_rgba(const Texture8& tex);
+
+// Alpha of an RGBA ImageF (channel 3) at texture coordinate uv: nearest texel, repeat wrap,
+// v up (see the top of this file). Non-finite coordinates read texel (0, 0) of the wrap cell.
+float sample_alpha(const ImageF& rgba, vec2 uv);
+
+// The alpha test of both passes: a fragment survives iff alpha >= cutoff.
+inline bool alpha_test_passes(float alpha, float cutoff) { return alpha >= cutoff; }
+
+}  // namespace shadowlab
