@@ -2,6 +2,8 @@
 #include <cstdio>
 
 #include "core/image_io.h"
+#include "core/parallel.h"
+#include "core/timer.h"
 #include "experiments/cli.h"
 #include "metric/metric_report.h"
 
@@ -14,6 +16,8 @@ int main(int argc, char** argv) {
         {"--json", "", "print one JSON object instead of the table"},
         {"--shadow-ms", "MS", "shadow time T_shadowed - T_unshadowed in ms (adds the performance score)"},
         {"--fps", "F", "target frame rate for the performance score (default 30)"},
+        {"--repeats", "N", "time compute_metric over N runs and print the median on stderr"},
+        {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
         {"--help", "", "print this help"},
     };
     const ParsedArgs args = parse_args(argc, argv, defs, 2);
@@ -31,8 +35,16 @@ int main(int argc, char** argv) {
     w.target_fps = args.get_double("--fps", 30.0, 1e-3, 1e6);
     Timings t;
     if (args.has("--shadow-ms")) t.shadowed_ms = args.get_double("--shadow-ms", 0.0, 0.0, 1e9);
-    const MetricReport r = compute_metric(test, ref, args.has("--texels") ? &texels : nullptr,
-                                          args.has("--shadow-ms") ? &t : nullptr, w);
+    if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
+    const ImageU32* tex = args.has("--texels") ? &texels : nullptr;
+    const Timings* tim = args.has("--shadow-ms") ? &t : nullptr;
+    MetricScratch scratch;
+    MetricReport r;
+    const int repeats = args.get_int("--repeats", 1, 1, 100000);
+    const double ms = median_ms(repeats, [&] { r = compute_metric(test, ref, tex, tim, w, &scratch); });
+    if (args.has("--repeats"))
+      std::fprintf(stderr, "compute_metric %dx%d: median %.2f ms over %d runs, %d threads\n",
+                   test.width, test.height, ms, repeats, thread_count());
     std::printf("%s\n", args.has("--json") ? metric_report_json(r).c_str()
                                             : metric_report_table(r).c_str());
     return 0;

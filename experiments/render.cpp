@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     make_output_dir(out, "--out");
 
     GBuffer g;
-    const double camera_ms = median_ms(repeats, [&] { g = render_gbuffer(scene); });
+    const double camera_ms = median_ms(repeats, [&] { render_gbuffer(scene, g); });
     RunOptions opt;
     opt.repeats = repeats;
     opt.cache_dir = args.has("--no-cache") ? "" : default_cache_dir();

@@ -55,9 +55,10 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   size_t done = 0;
 
   GBuffer g;
-  out.camera_ms = median_ms(config.repeats, [&] { g = render_gbuffer(scene); });
+  out.camera_ms = median_ms(config.repeats, [&] { render_gbuffer(scene, g); });
   MetricWeights weights;
   weights.target_fps = config.target_fps;
+  MetricScratch scratch;  // one set of metric buffers for every row
 
   // Reference first: the mask every row is compared with.
   progress_line(config, done, total, "reference", start);
@@ -71,7 +72,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.reference.label = "RT " + std::to_string(config.spp) + "spp";
   out.reference.result = run_technique(ref_spec, scene, g, ref_opt);
   out.reference.report = compute_metric(out.reference.result.mask, out.reference.result.mask,
-                                         nullptr, nullptr, weights);
+                                         nullptr, nullptr, weights, &scratch);
   if (!config.out_dir.empty())
     write_result_files(config.out_dir, "reference_", out.reference.result, ref_spec.text,
                        out.camera_ms);
@@ -94,7 +95,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       const Timings t{out.camera_ms + row.result.shadow_ms(), out.camera_ms};
       row.report = compute_metric(row.result.mask, out.reference.result.mask,
                                   row.result.texels.empty() ? nullptr : &row.result.texels, &t,
-                                  weights);
+                                  weights, &scratch);
       if (!config.out_dir.empty()) {
         std::string prefix = base.text + "_" + std::to_string(res) + "_";
         std::replace_if(prefix.begin(), prefix.end(), [](char c) { return c == ':' || c == ',' || c == '='; }, '_');

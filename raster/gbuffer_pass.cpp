@@ -25,9 +25,14 @@ struct VisibilityShader {
 }  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, RasterStats* stats) {
+  GBuffer g;
+  render_gbuffer(scene, g, stats);
+  return g;
+}
+
+void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
   const Camera& cam = scene.camera;
   const int w = cam.width, h = cam.height;
-  GBuffer g;
   g.resize(w, h);
   std::vector<uint32_t> triangle(g.pixel_count(), kNoPrimitive);
   std::vector<vec3> bary(g.pixel_count(), vec3(0.0f));
@@ -79,7 +84,6 @@ GBuffer render_gbuffer(const Scene& scene, RasterStats* stats) {
       g.covered[i] = 1;
     }
   });
-  return g;
 }
 
 }  // namespace shadowlab

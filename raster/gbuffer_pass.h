@@ -11,5 +11,7 @@ namespace shadowlab {
 // Renders scene.camera's view at scene.camera.width × height with no face culling.
 // Geometric and shading normals are flipped to face the camera (two-sided surfaces).
 GBuffer render_gbuffer(const Scene& scene, RasterStats* stats = nullptr);
+// Same, into an existing GBuffer whose storage is reused (timing loops: no page faults).
+void render_gbuffer(const Scene& scene, GBuffer& out, RasterStats* stats = nullptr);
 
 }  // namespace shadowlab
