@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     RunOptions opt;
     opt.repeats = repeats;
     opt.cache_dir = args.has("--no-cache") ? "" : default_cache_dir();
+    opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
     write_result_files(out, "", r, spec.text, camera_ms);
     std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f + lookup %.3f), camera pass %.3f ms; %s\n",

@@ -68,6 +68,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   ref_opt.repeats = 1;  // the reference is not what is being timed; run it once
   ref_opt.cache_dir = config.cache_dir;
   ref_opt.flag = "--spp";
+  ref_opt.progress = config.progress;
   out.reference.spec = ref_spec.text;
   out.reference.label = "RT " + std::to_string(config.spp) + "spp";
   out.reference.result = run_technique(ref_spec, scene, g, ref_opt);

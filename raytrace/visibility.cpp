@@ -209,8 +209,10 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
   return mask;
 }
 
+size_t visibility_work_units(int width, int height) { return TileGrid(width, height).count(); }
+
 ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer, int spp,
-                       uint64_t seed) {
+                       uint64_t seed, ProgressLine* progress) {
   if (spp < 1) throw InputError("spp", "samples per pixel must be >= 1, got " + std::to_string(spp));
   const double radius = double(scene.light.radius);
   if (radius <= 0.0) return hard_visibility(rt, scene, gbuffer);
@@ -288,6 +290,7 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
                        size_t(grid.x0(t) + local % kTile);
       mask.data[p] = float(visible[local]) / float(spp);
     }
+    if (progress) progress->advance();
   });
   rt.throw_if_error("tracing soft shadow rays");
   return mask;

@@ -17,6 +17,7 @@
 
 #include "core/gbuffer.h"
 #include "core/image.h"
+#include "core/progress.h"
 #include "core/scene.h"
 #include "raytrace/embree_scene.h"
 
@@ -51,8 +52,11 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
 //  - O inside the sphere (|C − O| <= radius): fully lit (1), since the pixel faces the centre.
 //  - radius == 0: identical to hard_visibility (spp and seed are unused).
 // Throws InputError for spp < 1.
+// `progress`, when given, advances by one unit per finished tile.
 ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer, int spp,
-                       uint64_t seed);
+                       uint64_t seed, ProgressLine* progress = nullptr);
+// Number of units soft_visibility advances a ProgressLine by for a width × height GBuffer.
+size_t visibility_work_units(int width, int height);
 
 // Closest hits of one camera ray per pixel centre.
 struct PrimaryHits {

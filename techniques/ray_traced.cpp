@@ -34,8 +34,13 @@ ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const
     EmbreeScene rt(scene);
     build_t.push_back(ms_since(t0));
     t0 = std::chrono::steady_clock::now();
-    res.mask = hard ? hard_visibility(rt, scene, gbuffer)
-                    : soft_visibility(rt, scene, gbuffer, spp, seed);
+    if (hard) {
+      res.mask = hard_visibility(rt, scene, gbuffer);
+    } else {
+      ProgressLine line("reference " + std::to_string(spp) + " spp",
+                        visibility_work_units(gbuffer.width, gbuffer.height), options.progress);
+      res.mask = soft_visibility(rt, scene, gbuffer, spp, seed, &line);
+    }
     trace_t.push_back(ms_since(t0));
   }
   res.map_ms = median(build_t);

@@ -35,6 +35,7 @@ struct RunOptions {
   bool want_texels = true;      // produce the texel-index image (for the detail score)
   std::string cache_dir;        // reference cache folder; empty = no cache
   const char* flag = "--technique";  // where the spec came from, for error messages
+  bool progress = false;        // progress line with ETA on stderr for long work (references)
 };
 
 // Runs the technique named by spec (throws InputError for an unknown name or parameter).
