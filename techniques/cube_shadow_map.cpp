@@ -113,7 +113,7 @@ std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer
 }
 
 void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& needed, int res,
-                     CubeShadowMap& map, size_t* submitted, size_t* culled) {
+                     CubeShadowMap& map, size_t* submitted, size_t* culled, CullMode cull) {
   map.res = res;
   set_view_projs(scene.light, map);
   const std::vector<MeshView> meshes = scene_mesh_views(scene);
@@ -126,7 +126,7 @@ void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& nee
       map.depth[f].clear();
       continue;
     }
-    const RasterStats st = rasterize(meshes, map.view_proj[f], CullMode::None, res, res, target, shader);
+    const RasterStats st = rasterize(meshes, map.view_proj[f], cull, res, res, target, shader);
     if (submitted) *submitted += st.triangles_in;
     if (culled) *culled += st.culled_frustum;
     // 1/w → radial distance: the ray through texel centre (u, v) has direction (u, v, -1) in

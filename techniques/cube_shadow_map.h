@@ -14,6 +14,7 @@
 
 #include "core/gbuffer.h"
 #include "core/scene.h"
+#include "raster/raster_types.h"
 #include "techniques/cube_faces.h"
 #include "techniques/technique.h"
 
@@ -39,8 +40,10 @@ struct CubeShadowMap {
 std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer& g,
                                                const CubeShadowParams& p);
 // Renders the needed faces (depth only) and converts them to normalised radial distance.
+// Faces are rendered with no face culling unless `cull` says otherwise (benchmarks).
 void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& needed, int res,
-                     CubeShadowMap& map, size_t* submitted = nullptr, size_t* culled = nullptr);
+                     CubeShadowMap& map, size_t* submitted = nullptr, size_t* culled = nullptr,
+                     CullMode cull = CullMode::None);
 // Looks up every GBuffer pixel: mask and (optionally) texel index.
 void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& map,
                      const CubeShadowParams& p, ImageF& mask, ImageU32* texels);
