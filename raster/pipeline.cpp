@@ -3,10 +3,25 @@
 namespace shadowlab {
 
 std::vector<MeshView> scene_mesh_views(const Scene& scene) {
+  // Bounds are computed here, once per call: callers rendering several views (cube faces)
+  // build the views once and pass them to every rasterize().
   std::vector<MeshView> views;
   views.reserve(scene.meshes.size());
-  for (const Mesh& m : scene.meshes)
-    views.push_back({m.positions.data(), m.positions.size(), m.indices.data(), m.triangle_count()});
+  for (const Mesh& m : scene.meshes) {
+    MeshView v{m.positions.data(), m.positions.size(), m.indices.data(), m.triangle_count()};
+    if (!m.positions.empty()) {
+      v.has_bounds = true;
+      v.lo = v.hi = m.positions[0];
+      for (const vec3& p : m.positions) {
+        v.lo = glm::min(v.lo, p);
+        v.hi = glm::max(v.hi, p);
+      }
+      // A NaN/Inf vertex must only drop its own triangles (counted in the binner), never
+      // cull the whole mesh through a NaN bound.
+      v.has_bounds = is_finite(v.lo) && is_finite(v.hi);
+    }
+    views.push_back(v);
+  }
   return views;
 }
 

@@ -14,11 +14,12 @@ std::vector<MeshView> scene_mesh_views(const Scene& scene);
 // entry per mesh plus the total.
 std::vector<uint32_t> scene_first_triangles(const Scene& scene);
 
-// Renders `meshes` with `view_proj` into `depth` (resized to width × height and cleared).
+// Renders `meshes` with `view_proj` into `depth` (resized to width × height; every pixel is
+// cleared to 0 before the first triangle touches it).
 template <class Shader>
 RasterStats rasterize(const std::vector<MeshView>& meshes, const mat4& view_proj, CullMode cull,
                       int width, int height, DepthTarget& depth, Shader& shader) {
-  depth.reset(width, height);
+  depth.resize(width, height);
   const BinnedFrame frame = bin_triangles(meshes, view_proj, cull, width, height);
   rasterize_frame(frame, depth, shader);
   return frame.stats;
@@ -27,6 +28,7 @@ RasterStats rasterize(const std::vector<MeshView>& meshes, const mat4& view_proj
 // A shader that keeps every fragment and computes no attributes: the depth-only fast path.
 struct DepthOnlyShader {
   static constexpr bool kNeedsAttributes = false;
+  static constexpr bool kKeepsAll = true;
   bool operator()(const Fragment&) const { return true; }
 };
 

@@ -41,10 +41,11 @@ struct DepthTarget {
   int width = 0;
   int height = 0;
   std::vector<float> inv_w;
-  void reset(int w, int h) {
+  // Sizes the target without clearing (the rasterizer clears tile by tile).
+  void resize(int w, int h) {
     width = w;
     height = h;
-    inv_w.assign(size_t(w) * size_t(h), 0.0f);
+    inv_w.resize(size_t(w) * size_t(h));
   }
 };
 

@@ -4,6 +4,8 @@
 // Shader concept (static dispatch, no virtual calls):
 //   struct Shader {
 //     static constexpr bool kNeedsAttributes = ...;  // false: Fragment::bary is not filled
+//     static constexpr bool kKeepsAll = ...;         // true: operator() never discards, has no
+//                                                    // side effects (depth-only fast path)
 //     bool operator()(const Fragment& f);            // false = discard (depth not written)
 //   };
 // The shader runs only for fragments that pass the depth test (1/w strictly greater than the
@@ -16,7 +18,49 @@
 
 namespace shadowlab {
 
-// Rasterizes triangle `s` inside the pixel rectangle [x0, x1) × [y0, y1).
+// True when the shader declares kKeepsAll = true (optional; default false).
+template <class Shader>
+constexpr bool kKeepsAll = [] {
+  if constexpr (requires { Shader::kKeepsAll; }) return bool(Shader::kKeepsAll);
+  return false;
+}();
+
+// Side of the blocks of the hierarchical test: a block wholly outside one edge is skipped, a
+// block wholly inside all three edges is filled without per-pixel edge tests.
+constexpr int kBlockSize = 8;
+
+// 1/w of triangle s at pixel (x, y): the one formula every path uses.
+inline float plane_depth(const TriangleSetup& s, int x, int y) {
+  return s.z0 + s.z_dx * float(x - s.min_x) + s.z_dy * float(y - s.min_y);
+}
+
+// Depth-tests and shades one covered pixel; e0..e2 are the biased edge values there.
+template <class Shader>
+inline void shade_pixel(const TriangleSetup& s, int x, int y, int64_t e0, int64_t e1, int64_t e2,
+                        float* zrow, Fragment& f, Shader& shader) {
+  const float iw = plane_depth(s, x, y);
+  if (!(iw > zrow[x])) return;
+  f.x = x;
+  f.y = y;
+  f.inv_w = iw;
+  if constexpr (Shader::kNeedsAttributes) {
+    // Perspective-correct barycentrics from the exact (unbiased) edge values.
+    const float inv_area = 1.0f / float(s.area2);
+    const float l0 = float(e0 - s.bias[0]) * inv_area;
+    const float l1 = float(e1 - s.bias[1]) * inv_area;
+    const float l2 = float(e2 - s.bias[2]) * inv_area;
+    const vec3 b = l0 * s.bary_over_w[0] + l1 * s.bary_over_w[1] + l2 * s.bary_over_w[2];
+    const float d = l0 * s.inv_w[0] + l1 * s.inv_w[1] + l2 * s.inv_w[2];
+    const float r = 1.0f / d;
+    f.bary[0] = b.x * r;
+    f.bary[1] = b.y * r;
+    f.bary[2] = b.z * r;
+  }
+  if (shader(f)) zrow[x] = iw;
+}
+
+// Rasterizes triangle `s` inside the pixel rectangle [x0, x1) × [y0, y1) (a tile, whose origin
+// is a multiple of kBlockSize), block by block.
 template <class Shader>
 void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, int y1,
                                 DepthTarget& depth, Shader& shader) {
@@ -24,56 +68,72 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
   const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
   if (min_x > max_x || min_y > max_y) return;
   const int64_t half = kSubpixelOne / 2;
-  const int64_t px0 = int64_t(min_x) * kSubpixelOne + half;
-  const int64_t py0 = int64_t(min_y) * kSubpixelOne + half;
-  // Exact integer edge values at the first pixel centre, stepped per pixel and per row.
-  int64_t row[3], step_x[3], step_y[3];
-  for (int k = 0; k < 3; ++k) {
-    row[k] = s.a[k] * px0 + s.b[k] * py0 + s.c[k] + s.bias[k];
-    step_x[k] = s.a[k] * kSubpixelOne;
-    step_y[k] = s.b[k] * kSubpixelOne;
-  }
-  // The stepped values include the fill-rule bias; barycentrics use the unbiased value (e - bias).
-  const float inv_area = 1.0f / float(s.area2);
   const int width = depth.width;
   Fragment f;
   f.triangle = s.triangle;
-  for (int y = min_y; y <= max_y; ++y) {
-    int64_t e0 = row[0], e1 = row[1], e2 = row[2];
-    float* zrow = depth.inv_w.data() + size_t(y) * size_t(width);
-    for (int x = min_x; x <= max_x; ++x) {
-      if ((e0 | e1 | e2) >= 0) {
-        // Screen-space barycentrics of the three setup vertices.
-        const float l0 = float(e0 - s.bias[0]) * inv_area;
-        const float l1 = float(e1 - s.bias[1]) * inv_area;
-        const float l2 = float(e2 - s.bias[2]) * inv_area;
-        const float iw = l0 * s.inv_w[0] + l1 * s.inv_w[1] + l2 * s.inv_w[2];
-        if (iw > zrow[x]) {
-          f.x = x;
-          f.y = y;
-          f.inv_w = iw;
-          if constexpr (Shader::kNeedsAttributes) {
-            const vec3 b = l0 * s.bary_over_w[0] + l1 * s.bary_over_w[1] + l2 * s.bary_over_w[2];
-            const float r = 1.0f / iw;
-            f.bary[0] = b.x * r;
-            f.bary[1] = b.y * r;
-            f.bary[2] = b.z * r;
+  // Exact biased edge value at pixel (x, y).
+  auto edge = [&](int k, int x, int y) {
+    return s.a[k] * (int64_t(x) * kSubpixelOne + half) + s.b[k] * (int64_t(y) * kSubpixelOne + half) +
+           s.c[k] + s.bias[k];
+  };
+  const int bx_start = min_x - (min_x - x0) % kBlockSize;
+  const int by_start = min_y - (min_y - y0) % kBlockSize;
+  for (int by = by_start; by <= max_y; by += kBlockSize) {
+    const int py0 = std::max(by, min_y), py1 = std::min(by + kBlockSize - 1, max_y);
+    for (int bx = bx_start; bx <= max_x; bx += kBlockSize) {
+      const int px0 = std::max(bx, min_x), px1 = std::min(bx + kBlockSize - 1, max_x);
+      // Edge extremes over the block's pixel centres (edges are linear: corners suffice).
+      bool outside = false, inside = true;
+      int64_t e_origin[3];
+      for (int k = 0; k < 3; ++k) {
+        const int64_t e = edge(k, px0, py0);
+        e_origin[k] = e;
+        const int64_t dx = s.a[k] * int64_t(px1 - px0) * kSubpixelOne;
+        const int64_t dy = s.b[k] * int64_t(py1 - py0) * kSubpixelOne;
+        const int64_t lo = e + std::min<int64_t>(0, dx) + std::min<int64_t>(0, dy);
+        const int64_t hi = e + std::max<int64_t>(0, dx) + std::max<int64_t>(0, dy);
+        outside = outside || hi < 0;
+        inside = inside && lo >= 0;
+      }
+      if (outside) continue;
+      const int64_t step_x[3] = {s.a[0] * kSubpixelOne, s.a[1] * kSubpixelOne, s.a[2] * kSubpixelOne};
+      const int64_t step_y[3] = {s.b[0] * kSubpixelOne, s.b[1] * kSubpixelOne, s.b[2] * kSubpixelOne};
+      int64_t row[3] = {e_origin[0], e_origin[1], e_origin[2]};
+      for (int y = py0; y <= py1;
+           ++y, row[0] += step_y[0], row[1] += step_y[1], row[2] += step_y[2]) {
+        float* zrow = depth.inv_w.data() + size_t(y) * size_t(width);
+        if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
+          if (inside) {
+            // Whole block row covered, every fragment kept: a depth max the compiler vectorizes.
+            const float zy = s.z0 + s.z_dy * float(y - s.min_y);
+            for (int x = px0; x <= px1; ++x) {
+              const float iw = zy + s.z_dx * float(x - s.min_x);
+              zrow[x] = iw > zrow[x] ? iw : zrow[x];
+            }
+            continue;
           }
-          if (shader(f)) zrow[x] = iw;
+        }
+        int64_t e0 = row[0], e1 = row[1], e2 = row[2];
+        for (int x = px0; x <= px1; ++x) {
+          if (inside || (e0 | e1 | e2) >= 0) shade_pixel(s, x, y, e0, e1, e2, zrow, f, shader);
+          e0 += step_x[0];
+          e1 += step_x[1];
+          e2 += step_x[2];
         }
       }
-      e0 += step_x[0];
-      e1 += step_x[1];
-      e2 += step_x[2];
     }
-    row[0] += step_y[0];
-    row[1] += step_y[1];
-    row[2] += step_y[2];
   }
 }
 
-// Rasterizes every binned triangle into `depth` (already sized and cleared by the caller),
-// tiles in parallel, each tile's triangles in submission order.
+// Shaders may also define `void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget&)`,
+// called once per tile after its last triangle while the tile is still in cache (e.g. to turn
+// 1/w into stored shadow-map values).
+template <class Shader>
+concept HasFinishTile = requires(Shader& s, const DepthTarget& d) { s.finish_tile(0, 0, 0, 0, d); };
+
+// Rasterizes every binned triangle into `depth` (sized by the caller; each tile clears its own
+// pixels first, while they are in cache), tiles in parallel, each tile's triangles in
+// submission order.
 template <class Shader>
 void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shader) {
   const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
@@ -82,9 +142,12 @@ void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shade
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(frame.width, x0 + kTileSize);
     const int y1 = std::min(frame.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+      std::fill_n(depth.inv_w.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0.0f);
     for (const BinnedChunk& chunk : frame.chunks)
       for (uint32_t i = chunk.offsets[t]; i < chunk.offsets[t + 1]; ++i)
         rasterize_triangle_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth, shader);
+    if constexpr (HasFinishTile<Shader>) shader.finish_tile(x0, y0, x1, y1, depth);
   });
 }
 

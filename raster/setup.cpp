@@ -74,6 +74,20 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
   out.min_y = int(std::max<int64_t>(0, ceil_div(lo_y - half, kSubpixelOne)));
   out.max_y = int(std::min<int64_t>(height - 1, floor_div(hi_y - half, kSubpixelOne)));
   out.triangle = triangle;
+  {
+    // Plane of 1/w through the three snapped vertices, in double, per pixel step.
+    const double x10 = double(x[1] - x[0]), y10 = double(y[1] - y[0]);
+    const double x20 = double(x[2] - x[0]), y20 = double(y[2] - y[0]);
+    const double z10 = double(out.inv_w[1]) - out.inv_w[0], z20 = double(out.inv_w[2]) - out.inv_w[0];
+    const double det = double(area2);
+    const double dzdx = (z10 * y20 - z20 * y10) / det;  // per sub-pixel unit
+    const double dzdy = (z20 * x10 - z10 * x20) / det;
+    const double px = double(int64_t(out.min_x) * kSubpixelOne + half - x[0]);
+    const double py = double(int64_t(out.min_y) * kSubpixelOne + half - y[0]);
+    out.z0 = float(double(out.inv_w[0]) + dzdx * px + dzdy * py);
+    out.z_dx = float(dzdx * double(kSubpixelOne));
+    out.z_dy = float(dzdy * double(kSubpixelOne));
+  }
   if (out.min_x > out.max_x || out.min_y > out.max_y) {
     ++stats.dropped_degenerate;
     return false;

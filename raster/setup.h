@@ -17,6 +17,9 @@ struct TriangleSetup {
   int64_t area2;                 // twice the area, fixed point squared, > 0
   int min_x, min_y, max_x, max_y;  // covered-pixel bounds, inclusive, clamped to the viewport
   float inv_w[3];                // 1/w at the vertices
+  // Depth plane: 1/w at pixel (x, y) is z0 + z_dx·(x − min_x) + z_dy·(y − min_y), evaluated in
+  // float exactly so by every path (scalar, blocked, vectorized), which keeps them bit-equal.
+  float z0, z_dx, z_dy;
   vec3 bary_over_w[3];           // original-triangle barycentrics / w at the vertices
   uint32_t triangle;             // submission index of the original triangle
 };

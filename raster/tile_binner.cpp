@@ -29,6 +29,23 @@ void add_stats(RasterStats& into, const RasterStats& s) {
 
 }  // namespace
 
+bool box_outside_frustum(const vec3& lo, const vec3& hi, const mat4& view_proj) {
+  vec4 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] = view_proj * vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+  // Planes as (sign, axis): x <= w, -x <= w, y <= w, -y <= w, and near: -z <= w.
+  auto all_out = [&](auto dist) {
+    for (const vec4& p : c)
+      if (dist(p) >= 0.0f) return false;
+    return true;
+  };
+  return all_out([](const vec4& p) { return p.w - p.x; }) ||
+         all_out([](const vec4& p) { return p.w + p.x; }) ||
+         all_out([](const vec4& p) { return p.w - p.y; }) ||
+         all_out([](const vec4& p) { return p.w + p.y; }) ||
+         all_out([](const vec4& p) { return p.w + p.z; });
+}
+
 BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_proj,
                           CullMode cull, int width, int height) {
   BinnedFrame frame;
@@ -39,13 +56,20 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
   const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
   if (width <= 0 || height <= 0) return frame;
 
-  // Vertex transform, once per vertex.
+  // Whole meshes outside the frustum are skipped; the rest get one transform per vertex.
   std::vector<std::vector<vec4>> clip(meshes.size());
   std::vector<size_t> first_triangle(meshes.size() + 1, 0);
+  std::vector<uint8_t> mesh_culled(meshes.size(), 0);
   for (size_t m = 0; m < meshes.size(); ++m) {
-    clip[m].resize(meshes[m].vertex_count);
     first_triangle[m + 1] = first_triangle[m] + meshes[m].triangle_count;
     const MeshView& mesh = meshes[m];
+    if (mesh.has_bounds && box_outside_frustum(mesh.lo, mesh.hi, view_proj)) {
+      mesh_culled[m] = 1;
+      frame.stats.triangles_in += mesh.triangle_count;
+      frame.stats.culled_frustum += mesh.triangle_count;
+      continue;
+    }
+    clip[m].resize(meshes[m].vertex_count);
     std::vector<vec4>& out = clip[m];
     parallel_for_chunks(mesh.vertex_count, 16384, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) out[i] = view_proj * vec4(mesh.positions[i], 1.0f);
@@ -66,6 +90,10 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
                       first_triangle.begin()) - 1;
     for (size_t t = begin; t < end; ++t) {
       while (t >= first_triangle[m + 1]) ++m;
+      if (mesh_culled[m]) {  // counted above; jump to the mesh's end
+        t = std::min(end, first_triangle[m + 1]) - 1;
+        continue;
+      }
       const size_t local = t - first_triangle[m];
       const uint32_t* idx = meshes[m].indices + 3 * local;
       const vec4& a = clip[m][idx[0]];

@@ -13,13 +13,20 @@
 
 namespace shadowlab {
 
-// A mesh as the rasterizer sees it: world-space positions and a triangle list.
+// A mesh as the rasterizer sees it: world-space positions and a triangle list, and optionally
+// its bounds, which let a whole mesh outside the view frustum be culled before any vertex work.
 struct MeshView {
   const vec3* positions = nullptr;
   size_t vertex_count = 0;
   const uint32_t* indices = nullptr;  // 3 per triangle
   size_t triangle_count = 0;
+  bool has_bounds = false;
+  vec3 lo{0.0f}, hi{0.0f};            // world-space AABB of the positions (when has_bounds)
 };
+
+// True when the box [lo, hi] lies entirely outside one plane of the frustum of view_proj
+// (left, right, bottom, top or near). Conservative: false means "may be visible".
+bool box_outside_frustum(const vec3& lo, const vec3& hi, const mat4& view_proj);
 
 // Triangles of one chunk that touch one tile are setups[chunk][items[offsets[t] .. offsets[t+1])].
 struct BinnedChunk {

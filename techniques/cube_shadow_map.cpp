@@ -112,42 +112,52 @@ std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer
   return needed;
 }
 
+namespace {
+
+// Depth-only shader whose tile epilogue turns 1/w into normalised radial distance: the ray
+// through texel centre (u, v) has direction (u, v, -1) in view space (tan 45° = 1), so
+// |p - L| = view depth × sqrt(1 + u² + v²).
+struct RadialDepthShader {
+  static constexpr bool kNeedsAttributes = false;
+  static constexpr bool kKeepsAll = true;
+  int res;
+  float inv_far;
+  float* out;  // res², row-major
+  bool operator()(const Fragment&) const { return true; }
+  void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
+    const float scale = 2.0f / float(res);
+    for (int y = y0; y < y1; ++y) {
+      const float v = 1.0f - (float(y) + 0.5f) * scale;
+      const float* src = depth.inv_w.data() + size_t(y) * size_t(res);
+      float* dst = out + size_t(y) * size_t(res);
+      for (int x = x0; x < x1; ++x) {
+        const float u = (float(x) + 0.5f) * scale - 1.0f;
+        const float iw = src[x];
+        dst[x] = iw > 0.0f ? std::sqrt(1.0f + u * u + v * v) / iw * inv_far : kInf;
+      }
+    }
+  }
+};
+
+}  // namespace
+
 void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& needed, int res,
                      CubeShadowMap& map, size_t* submitted, size_t* culled, CullMode cull) {
   map.res = res;
   set_view_projs(scene.light, map);
   const std::vector<MeshView> meshes = scene_mesh_views(scene);
-  const float inv_far = 1.0f / scene.light.far;
   DepthTarget target;
-  DepthOnlyShader shader;
   for (int f = 0; f < kCubeFaces; ++f) {
     map.rendered[f] = needed[f];
     if (!needed[f]) {
       map.depth[f].clear();
       continue;
     }
+    map.depth[f].resize(size_t(res) * size_t(res));
+    RadialDepthShader shader{res, 1.0f / scene.light.far, map.depth[f].data()};
     const RasterStats st = rasterize(meshes, map.view_proj[f], cull, res, res, target, shader);
     if (submitted) *submitted += st.triangles_in;
     if (culled) *culled += st.culled_frustum;
-    // 1/w → radial distance: the ray through texel centre (u, v) has direction (u, v, -1) in
-    // view space (tan 45° = 1), so |p - L| = view depth × sqrt(1 + u² + v²).
-    std::vector<float>& out = map.depth[f];
-    out.resize(size_t(res) * size_t(res));
-    parallel_for_chunks(size_t(res), 16, [&](size_t y0, size_t y1) {
-      for (size_t y = y0; y < y1; ++y) {
-        const float v = 1.0f - (float(y) + 0.5f) / float(res) * 2.0f;
-        for (int x = 0; x < res; ++x) {
-          const size_t i = y * size_t(res) + size_t(x);
-          const float iw = target.inv_w[i];
-          if (iw <= 0.0f) {
-            out[i] = kInf;
-            continue;
-          }
-          const float u = (float(x) + 0.5f) / float(res) * 2.0f - 1.0f;
-          out[i] = std::sqrt(1.0f + u * u + v * v) / iw * inv_far;
-        }
-      }
-    });
   }
 }
 
