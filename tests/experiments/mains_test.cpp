@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -23,7 +24,8 @@ struct ProcResult {
 
 // Runs build/experiments/<cmd> with args, capturing stdout and stderr.
 ProcResult run(const std::string& cmd) {
-  const std::string err_path = test::binary_path("mains_stderr.txt");
+  // One stderr file per process: CTest runs the tests of this file in parallel processes.
+  const std::string err_path = test::binary_path("mains_stderr_" + std::to_string(getpid()) + ".txt");
   const std::string full = std::string(SHADOWLAB_BINARY_DIR) + "/experiments/" + cmd + " 2>" + err_path;
   ProcResult r;
   FILE* p = popen(full.c_str(), "r");
