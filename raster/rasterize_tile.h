@@ -14,6 +14,7 @@
 #include <algorithm>
 
 #include "core/parallel.h"
+#include "raster/depth_kernels.h"
 #include "raster/tile_binner.h"
 
 namespace shadowlab {
@@ -81,7 +82,15 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
   for (int by = by_start; by <= max_y; by += kBlockSize) {
     const int py0 = std::max(by, min_y), py1 = std::min(by + kBlockSize - 1, max_y);
     for (int bx = bx_start; bx <= max_x; bx += kBlockSize) {
-      const int px0 = std::max(bx, min_x), px1 = std::min(bx + kBlockSize - 1, max_x);
+      int px0 = std::max(bx, min_x), px1 = std::min(bx + kBlockSize - 1, max_x);
+      if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
+        // Depth-only: widen to the whole 8-pixel block when it lies inside the tile, so the
+        // 8-lane kernel runs; the exact edge test rejects the extra pixels.
+        if (bx + kBlockSize <= x1) {
+          px0 = bx;
+          px1 = bx + kBlockSize - 1;
+        }
+      }
       // Edge extremes over the block's pixel centres (edges are linear: corners suffice).
       bool outside = false, inside = true;
       int64_t e_origin[3];
@@ -106,10 +115,27 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
           if (inside) {
             // Whole block row covered, every fragment kept: a depth max the compiler vectorizes.
             const float zy = s.z0 + s.z_dy * float(y - s.min_y);
+            if (px1 - px0 == kBlockSize - 1) {  // the common case: a constant trip count
+              float* z = zrow + px0;
+              const int ox = px0 - s.min_x;
+              for (int i = 0; i < kBlockSize; ++i) {
+                const float iw = zy + s.z_dx * float(ox + i);
+                z[i] = iw > z[i] ? iw : z[i];
+              }
+              continue;
+            }
             for (int x = px0; x <= px1; ++x) {
               const float iw = zy + s.z_dx * float(x - s.min_x);
               zrow[x] = iw > zrow[x] ? iw : zrow[x];
             }
+            continue;
+          }
+        }
+        if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
+          if (px1 - px0 == kBlockSize - 1) {
+            // Partial block row, depth only: the SIMD kernel (scalar oracle beside it).
+            depth_row8(row, step_x, s.z0 + s.z_dy * float(y - s.min_y), s.z_dx, px0 - s.min_x,
+                       zrow + px0);
             continue;
           }
         }

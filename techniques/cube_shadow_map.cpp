@@ -130,10 +130,10 @@ struct RadialDepthShader {
       const float v = 1.0f - (float(y) + 0.5f) * scale;
       const float* src = depth.inv_w.data() + size_t(y) * size_t(res);
       float* dst = out + size_t(y) * size_t(res);
+      // Branch-free so it vectorizes: an empty texel (1/w = 0) divides to +inf, "nothing seen".
       for (int x = x0; x < x1; ++x) {
         const float u = (float(x) + 0.5f) * scale - 1.0f;
-        const float iw = src[x];
-        dst[x] = iw > 0.0f ? std::sqrt(1.0f + u * u + v * v) / iw * inv_far : kInf;
+        dst[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / src[x];
       }
     }
   }
