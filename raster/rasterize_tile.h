@@ -105,6 +105,26 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
         inside = inside && lo >= 0;
       }
       if (outside) continue;
+      if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
+        if (px1 - px0 == kBlockSize - 1) {
+          // Depth only: the whole block in one SIMD kernel call (for a block inside the
+          // triangle the coverage lanes are all set and cost next to nothing).
+          DepthBlock8 blk;
+          for (int k = 0; k < 3; ++k) {
+            blk.edge[k] = e_origin[k];
+            blk.step_x[k] = s.a[k] * kSubpixelOne;
+            blk.step_y[k] = s.b[k] * kSubpixelOne;
+          }
+          blk.z0 = s.z0;
+          blk.z_dx = s.z_dx;
+          blk.z_dy = s.z_dy;
+          blk.ox = px0 - s.min_x;
+          blk.oy = py0 - s.min_y;
+          blk.rows = py1 - py0 + 1;
+          depth_block8(blk, depth.inv_w.data() + size_t(py0) * size_t(width) + px0, size_t(width));
+          continue;
+        }
+      }
       const int64_t step_x[3] = {s.a[0] * kSubpixelOne, s.a[1] * kSubpixelOne, s.a[2] * kSubpixelOne};
       const int64_t step_y[3] = {s.b[0] * kSubpixelOne, s.b[1] * kSubpixelOne, s.b[2] * kSubpixelOne};
       int64_t row[3] = {e_origin[0], e_origin[1], e_origin[2]};
