@@ -59,9 +59,12 @@ ClipPolygon clip_triangle(const vec4& a, const vec4& b, const vec4& c, float gua
         const ClipVertex& outv = s_in ? e : s;
         const float din = s_in ? ds : de;
         const float dout = s_in ? de : ds;
-        const float t = din / (din - dout);
-        out.v[out.count++] = {in.clip + t * (outv.clip - in.clip),
-                              in.bary + t * (outv.bary - in.bary)};
+        // In double: a vertex cut at the near plane has a small w that float interpolation
+        // between far-apart endpoints would get wrong by ~1e-5 relative, moving it on screen.
+        const double t = double(din) / (double(din) - double(dout));
+        const glm::dvec4 ci(in.clip), co(outv.clip);
+        const glm::dvec3 bi(in.bary), bo(outv.bary);
+        out.v[out.count++] = {vec4(ci + t * (co - ci)), vec3(bi + t * (bo - bi))};
       }
     }
     poly = out;

@@ -36,16 +36,22 @@ struct RasterStats {
   size_t fragments = 0;           // fragments that passed the depth test (filled by shaders' caller)
 };
 
-// Depth target: width × height values of 1/w, row-major, y down; 0 = nothing drawn.
+// Depth target: width × height values of 1/w, row-major, y down; 0 = nothing drawn. With
+// with_ids set it is also a visibility buffer: ids holds the submission index of the triangle
+// whose fragment was kept last at each pixel (0xFFFFFFFF where none), written by the
+// rasterizer itself so depth-only fast paths can fill it.
 struct DepthTarget {
   int width = 0;
   int height = 0;
+  bool with_ids = false;
   std::vector<float> inv_w;
+  std::vector<uint32_t> ids;
   // Sizes the target without clearing (the rasterizer clears tile by tile).
   void resize(int w, int h) {
     width = w;
     height = h;
     inv_w.resize(size_t(w) * size_t(h));
+    if (with_ids) ids.resize(size_t(w) * size_t(h));
   }
 };
 

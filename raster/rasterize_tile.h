@@ -32,13 +32,14 @@ constexpr int kBlockSize = 8;
 
 // 1/w of triangle s at pixel (x, y): the one formula every path uses.
 inline float plane_depth(const TriangleSetup& s, int x, int y) {
-  return s.z0 + s.z_dx * float(x - s.min_x) + s.z_dy * float(y - s.min_y);
+  const float zy = s.z0 + s.z_dy * float(y - s.min_y);
+  return std::min(std::max(zy + s.z_dx * float(x - s.min_x), s.z_lo), s.z_hi);
 }
 
 // Depth-tests and shades one covered pixel; e0..e2 are the biased edge values there.
 template <class Shader>
 inline void shade_pixel(const TriangleSetup& s, int x, int y, int64_t e0, int64_t e1, int64_t e2,
-                        float* zrow, Fragment& f, Shader& shader) {
+                        float* zrow, uint32_t* idrow, Fragment& f, Shader& shader) {
   const float iw = plane_depth(s, x, y);
   if (!(iw > zrow[x])) return;
   f.x = x;
@@ -57,7 +58,10 @@ inline void shade_pixel(const TriangleSetup& s, int x, int y, int64_t e0, int64_
     f.bary[1] = b.y * r;
     f.bary[2] = b.z * r;
   }
-  if (shader(f)) zrow[x] = iw;
+  if (shader(f)) {
+    zrow[x] = iw;
+    if (idrow) idrow[x] = s.triangle;
+  }
 }
 
 // Rasterizes triangle `s` inside the pixel rectangle [x0, x1) × [y0, y1) (a tile, whose origin
@@ -118,9 +122,15 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
           blk.z0 = s.z0;
           blk.z_dx = s.z_dx;
           blk.z_dy = s.z_dy;
+          blk.z_lo = s.z_lo;
+          blk.z_hi = s.z_hi;
           blk.ox = px0 - s.min_x;
           blk.oy = py0 - s.min_y;
           blk.rows = py1 - py0 + 1;
+          if (depth.with_ids) {
+            blk.id = s.triangle;
+            blk.ids = depth.ids.data() + size_t(py0) * size_t(width) + px0;
+          }
           depth_block8(blk, depth.inv_w.data() + size_t(py0) * size_t(width) + px0, size_t(width));
           continue;
         }
@@ -131,37 +141,10 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
       for (int y = py0; y <= py1;
            ++y, row[0] += step_y[0], row[1] += step_y[1], row[2] += step_y[2]) {
         float* zrow = depth.inv_w.data() + size_t(y) * size_t(width);
-        if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
-          if (inside) {
-            // Whole block row covered, every fragment kept: a depth max the compiler vectorizes.
-            const float zy = s.z0 + s.z_dy * float(y - s.min_y);
-            if (px1 - px0 == kBlockSize - 1) {  // the common case: a constant trip count
-              float* z = zrow + px0;
-              const int ox = px0 - s.min_x;
-              for (int i = 0; i < kBlockSize; ++i) {
-                const float iw = zy + s.z_dx * float(ox + i);
-                z[i] = iw > z[i] ? iw : z[i];
-              }
-              continue;
-            }
-            for (int x = px0; x <= px1; ++x) {
-              const float iw = zy + s.z_dx * float(x - s.min_x);
-              zrow[x] = iw > zrow[x] ? iw : zrow[x];
-            }
-            continue;
-          }
-        }
-        if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
-          if (px1 - px0 == kBlockSize - 1) {
-            // Partial block row, depth only: the SIMD kernel (scalar oracle beside it).
-            depth_row8(row, step_x, s.z0 + s.z_dy * float(y - s.min_y), s.z_dx, px0 - s.min_x,
-                       zrow + px0);
-            continue;
-          }
-        }
+        uint32_t* idrow = depth.with_ids ? depth.ids.data() + size_t(y) * size_t(width) : nullptr;
         int64_t e0 = row[0], e1 = row[1], e2 = row[2];
         for (int x = px0; x <= px1; ++x) {
-          if (inside || (e0 | e1 | e2) >= 0) shade_pixel(s, x, y, e0, e1, e2, zrow, f, shader);
+          if (inside || (e0 | e1 | e2) >= 0) shade_pixel(s, x, y, e0, e1, e2, zrow, idrow, f, shader);
           e0 += step_x[0];
           e1 += step_x[1];
           e2 += step_x[2];
@@ -188,8 +171,11 @@ void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shade
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(frame.width, x0 + kTileSize);
     const int y1 = std::min(frame.height, y0 + kTileSize);
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
       std::fill_n(depth.inv_w.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0.0f);
+      if (depth.with_ids)
+        std::fill_n(depth.ids.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0xFFFFFFFFu);
+    }
     for (const BinnedChunk& chunk : frame.chunks)
       for (uint32_t i = chunk.offsets[t]; i < chunk.offsets[t + 1]; ++i)
         rasterize_triangle_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth, shader);

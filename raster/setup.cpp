@@ -18,12 +18,15 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
                     TriangleSetup& out, RasterStats& stats) {
   const ClipVertex* v[3] = {&v0, &v1, &v2};
   int64_t fx[3], fy[3];
+  double sxy[3][2];  // unsnapped screen positions, for the depth plane
   for (int i = 0; i < 3; ++i) {
     // Viewport transform in double, then round to the fixed-point grid. y flips: NDC y up,
     // screen y down.
     const double w = v[i]->clip.w;
     const double sx = (double(v[i]->clip.x) / w * 0.5 + 0.5) * double(width);
     const double sy = (0.5 - double(v[i]->clip.y) / w * 0.5) * double(height);
+    sxy[i][0] = sx;
+    sxy[i][1] = sy;
     fx[i] = std::llrint(sx * double(kSubpixelOne));
     fy[i] = std::llrint(sy * double(kSubpixelOne));
   }
@@ -75,18 +78,27 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
   out.max_y = int(std::min<int64_t>(height - 1, floor_div(hi_y - half, kSubpixelOne)));
   out.triangle = triangle;
   {
-    // Plane of 1/w through the three snapped vertices, in double, per pixel step.
-    const double x10 = double(x[1] - x[0]), y10 = double(y[1] - y[0]);
-    const double x20 = double(x[2] - x[0]), y20 = double(y[2] - y[0]);
+    // Plane of 1/w through the three vertices at their UNSNAPPED screen positions, in double.
+    // Coverage uses the snapped ones (watertightness); depth does not need to, and snapping a
+    // vertex near the horizon by 1/512 pixel would tilt a steep 1/w plane by ~1e-3 relative.
+    const double* p0 = sxy[order[0]];
+    const double* p1 = sxy[order[1]];
+    const double* p2 = sxy[order[2]];
+    const double x10 = p1[0] - p0[0], y10 = p1[1] - p0[1];
+    const double x20 = p2[0] - p0[0], y20 = p2[1] - p0[1];
     const double z10 = double(out.inv_w[1]) - out.inv_w[0], z20 = double(out.inv_w[2]) - out.inv_w[0];
-    const double det = double(area2);
-    const double dzdx = (z10 * y20 - z20 * y10) / det;  // per sub-pixel unit
-    const double dzdy = (z20 * x10 - z10 * x20) / det;
-    const double px = double(int64_t(out.min_x) * kSubpixelOne + half - x[0]);
-    const double py = double(int64_t(out.min_y) * kSubpixelOne + half - y[0]);
+    const double det = x10 * y20 - y10 * x20;
+    // det can only vanish when the snapped area does not (a sliver rounding to non-zero area):
+    // fall back to a constant plane then.
+    const double dzdx = det != 0.0 ? (z10 * y20 - z20 * y10) / det : 0.0;  // per pixel
+    const double dzdy = det != 0.0 ? (z20 * x10 - z10 * x20) / det : 0.0;
+    const double px = double(out.min_x) + 0.5 - p0[0];
+    const double py = double(out.min_y) + 0.5 - p0[1];
     out.z0 = float(double(out.inv_w[0]) + dzdx * px + dzdy * py);
-    out.z_dx = float(dzdx * double(kSubpixelOne));
-    out.z_dy = float(dzdy * double(kSubpixelOne));
+    out.z_dx = float(dzdx);
+    out.z_dy = float(dzdy);
+    out.z_lo = std::min({out.inv_w[0], out.inv_w[1], out.inv_w[2]});
+    out.z_hi = std::max({out.inv_w[0], out.inv_w[1], out.inv_w[2]});
   }
   if (out.min_x > out.max_x || out.min_y > out.max_y) {
     ++stats.dropped_degenerate;

@@ -20,6 +20,9 @@ struct TriangleSetup {
   // Depth plane: 1/w at pixel (x, y) is z0 + z_dx·(x − min_x) + z_dy·(y − min_y), evaluated in
   // float exactly so by every path (scalar, blocked, vectorized), which keeps them bit-equal.
   float z0, z_dx, z_dy;
+  // The result is clamped to [z_lo, z_hi], the range of the vertices' 1/w: a covered pixel's
+  // true value lies in it, and a sliver's ill-conditioned plane cannot run away.
+  float z_lo, z_hi;
   vec3 bary_over_w[3];           // original-triangle barycentrics / w at the vertices
   uint32_t triangle;             // submission index of the original triangle
 };
