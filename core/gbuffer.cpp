@@ -18,4 +18,18 @@ void GBuffer::resize(int w, int h) {
   covered.assign(n, 0);
 }
 
+void GBuffer::reshape(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = pixel_count();
+  position.resize(n);
+  normal.resize(n);
+  geo_normal.resize(n);
+  uv.resize(n);
+  depth.resize(n);
+  mesh_id.resize(n);
+  prim_id.resize(n);
+  covered.resize(n);
+}
+
 }  // namespace shadowlab

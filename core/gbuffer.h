@@ -24,7 +24,10 @@ struct GBuffer {
   std::vector<uint8_t> covered;      // 1 where some triangle covers the pixel centre
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
+  // Sizes every array and resets it to the empty values (covered 0, ids kNoPrimitive, ...).
   void resize(int w, int h);
+  // Sizes every array keeping whatever values are there (for writers that set every pixel).
+  void reshape(int w, int h);
 };
 
 }  // namespace shadowlab

@@ -9,7 +9,17 @@ namespace {
 const vec3 kForward[kCubeFaces] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 const vec3 kUp[kCubeFaces] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
+// right = forward × up (the view-space +x axis of lookAt).
+const vec3 kRight[kCubeFaces] = {glm::cross(kForward[0], kUp[0]), glm::cross(kForward[1], kUp[1]),
+                                 glm::cross(kForward[2], kUp[2]), glm::cross(kForward[3], kUp[3]),
+                                 glm::cross(kForward[4], kUp[4]), glm::cross(kForward[5], kUp[5])};
+
 }  // namespace
+
+vec2 cube_face_uv(int face, const vec3& dir) {
+  const float inv = 1.0f / glm::dot(dir, kForward[face]);
+  return vec2(glm::dot(dir, kRight[face]) * inv, glm::dot(dir, kUp[face]) * inv);
+}
 
 int cube_face_of(const vec3& d) {
   const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);

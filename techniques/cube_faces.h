@@ -20,6 +20,10 @@ int cube_face_of(const vec3& dir);
 mat4 cube_face_view(const PointLight& light, int face);
 // Face projection: 90° square frustum between the light's near and far planes.
 mat4 cube_face_projection(const PointLight& light);
+// Face coordinates (u, v) in NDC of a direction from the light, without the projection matrix:
+// u = dir·right / dir·forward, v = dir·up / dir·forward (the same mapping as
+// cube_face_projection() · cube_face_view(), up to rounding).
+vec2 cube_face_uv(int face, const vec3& dir);
 // Unit world-space direction through face coordinates (u, v) in NDC ([-1,1] covers the face,
 // values outside it continue the face's plane).
 vec3 cube_face_direction(int face, float u, float v);

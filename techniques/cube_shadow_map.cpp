@@ -14,11 +14,11 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Continuous texel coordinates (x right, y down, texel centres at +0.5) of world point p in a face.
-vec2 face_texel_coords(const mat4& view_proj, const vec3& p, int res) {
-  const vec4 q = view_proj * vec4(p, 1.0f);
-  const float u = q.x / q.w, v = q.y / q.w;
-  return vec2((u * 0.5f + 0.5f) * float(res), (0.5f - v * 0.5f) * float(res));
+// Continuous texel coordinates (x right, y down, texel centres at +0.5) of direction `dir`
+// from the light in `face`.
+vec2 face_texel_coords(int face, const vec3& dir, int res) {
+  const vec2 uv = cube_face_uv(face, dir);
+  return vec2((uv.x * 0.5f + 0.5f) * float(res), (0.5f - uv.y * 0.5f) * float(res));
 }
 
 int clamp_texel(float c, int res) {
@@ -28,9 +28,7 @@ int clamp_texel(float c, int res) {
 // Visits the texels of a lookup: calls fn(face, x, y, weight) for each, weights summing to 1.
 // Texels outside the face are redirected through their direction to the face that owns it.
 template <class Fn>
-void for_each_tap(const CubeShadowMap& map, const PointLight& light, int face, vec2 st, int pcf,
-                  Fn&& fn) {
-  const int res = map.res;
+void for_each_tap(int res, int face, vec2 st, int pcf, Fn&& fn) {
   if (pcf <= 1) {
     fn(face, clamp_texel(st.x, res), clamp_texel(st.y, res), 1.0f);
     return;
@@ -56,7 +54,7 @@ void for_each_tap(const CubeShadowMap& map, const PointLight& light, int face, v
       const float v = 1.0f - (float(ty) + 0.5f) / float(res) * 2.0f;
       const vec3 dir = cube_face_direction(face, u, v);
       const int f2 = cube_face_of(dir);
-      const vec2 st2 = face_texel_coords(map.view_proj[f2], light.position + dir, res);
+      const vec2 st2 = face_texel_coords(f2, dir, res);
       fn(f2, clamp_texel(st2.x, res), clamp_texel(st2.y, res), w);
     }
   }
@@ -84,9 +82,6 @@ static void set_view_projs(const PointLight& light, CubeShadowMap& map) {
 
 std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer& g,
                                                const CubeShadowParams& p) {
-  CubeShadowMap probe;
-  probe.res = p.res;
-  set_view_projs(scene.light, probe);
   // Per-chunk flags, merged in chunk order.
   const size_t grain = 8192;
   const size_t chunks = (g.pixel_count() + grain - 1) / grain;
@@ -101,8 +96,8 @@ std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer
         f[face] = true;
         continue;
       }
-      const vec2 st = face_texel_coords(probe.view_proj[face], g.position[i], p.res);
-      for_each_tap(probe, scene.light, face, st, p.pcf,
+      const vec2 st = face_texel_coords(face, dir, p.res);
+      for_each_tap(p.res, face, st, p.pcf,
                    [&](int ff, int, int, float) { f[ff] = true; });
     }
   });
@@ -164,8 +159,16 @@ void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& nee
 void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& map,
                      const CubeShadowParams& p, ImageF& mask, ImageU32* texels) {
   const PointLight& light = scene.light;
-  mask = ImageF(g.width, g.height, 1, 1.0f);
-  if (texels) *texels = ImageU32(g.width, g.height, 1, kNoTexel);
+  // Every pixel is written below, so existing storage is reused as it is (no clearing, and no
+  // page faults in timing loops).
+  auto shape = [&](auto& img) {
+    img.width = g.width;
+    img.height = g.height;
+    img.channels = 1;
+    img.data.resize(g.pixel_count());
+  };
+  shape(mask);
+  if (texels) shape(*texels);
   const int res = map.res;
   const float inv_far = 1.0f / light.far;
   // World size of one texel at unit distance along the face axis (face spans [-1, 1]).
@@ -175,16 +178,23 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
   const float footprint = 0.5f * float(p.pcf + 1);
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      if (!g.covered[i]) continue;
+      if (texels) texels->data[i] = kNoTexel;
+      if (!g.covered[i]) {
+        mask.data[i] = 1.0f;
+        continue;
+      }
       if (!faces_light(g, i, light.position)) {
         mask.data[i] = 0.0f;
         continue;
       }
       const vec3 to_p = g.position[i] - light.position;
       const float dist = glm::length(to_p);
-      if (dist <= 0.0f) continue;  // a receiver at the light itself is lit
+      if (dist <= 0.0f) {  // a receiver at the light itself is lit
+        mask.data[i] = 1.0f;
+        continue;
+      }
       const int face = cube_face_of(to_p);
-      const vec2 st = face_texel_coords(map.view_proj[face], g.position[i], res);
+      const vec2 st = face_texel_coords(face, to_p, res);
       if (texels)
         texels->data[i] = uint32_t(face) * uint32_t(res) * uint32_t(res) +
                           uint32_t(clamp_texel(st.y, res)) * uint32_t(res) +
@@ -197,7 +207,7 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
       // Lit weight over total weight: both sums see the same additions, so an all-lit
       // footprint gives exactly 1 whatever the float rounding of the weights.
       float lit = 0.0f, total = 0.0f;
-      for_each_tap(map, light, face, st, p.pcf, [&](int f, int x, int y, float w) {
+      for_each_tap(res, face, st, p.pcf, [&](int f, int x, int y, float w) {
         total += w;
         lit += receiver <= map.depth[f][size_t(y) * size_t(res) + size_t(x)] ? w : 0.0f;
       });

@@ -54,8 +54,5 @@ std::vector<std::pair<std::string, std::string>> technique_list() {
   return out;
 }
 
-bool faces_light(const GBuffer& g, size_t pixel, const vec3& light_pos) {
-  return glm::dot(g.geo_normal[pixel], light_pos - g.position[pixel]) > 0.0f;
-}
 
 }  // namespace shadowlab

@@ -48,6 +48,8 @@ std::vector<std::pair<std::string, std::string>> technique_list();
 
 // Shared rule for receivers: true when the pixel holds a surface that faces the light
 // (geometric N·L > 0).
-bool faces_light(const GBuffer& g, size_t pixel, const vec3& light_pos);
+inline bool faces_light(const GBuffer& g, size_t pixel, const vec3& light_pos) {
+  return glm::dot(g.geo_normal[pixel], light_pos - g.position[pixel]) > 0.0f;
+}
 
 }  // namespace shadowlab

@@ -30,8 +30,9 @@ TEST(Analytic, FacingAwayIsZeroAndEmptyIsOne) {
     const ShadowResult r = test::run(spec, scene, g);
     for (size_t i = 0; i < g.pixel_count(); ++i)
       ASSERT_EQ(r.mask.data[i], g.covered[i] ? 0.0f : 1.0f) << spec << " pixel " << i;
-    if (!r.texels.empty())
+    if (!r.texels.empty()) {
       for (uint32_t t : r.texels.data) ASSERT_EQ(t, kNoTexel) << spec;
+    }
   }
 }
 
