@@ -77,6 +77,12 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
   out.min_y = int(std::max<int64_t>(0, ceil_div(lo_y - half, kSubpixelOne)));
   out.max_y = int(std::min<int64_t>(height - 1, floor_div(hi_y - half, kSubpixelOne)));
   out.triangle = triangle;
+  // No pixel centre inside the bounds (most sub-pixel triangles of dense meshes): done before
+  // the depth plane's arithmetic.
+  if (out.min_x > out.max_x || out.min_y > out.max_y) {
+    ++stats.dropped_degenerate;
+    return false;
+  }
   {
     // Plane of 1/w through the three vertices at their UNSNAPPED screen positions, in double.
     // Coverage uses the snapped ones (watertightness); depth does not need to, and snapping a
@@ -99,10 +105,6 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
     out.z_dy = float(dzdy);
     out.z_lo = std::min({out.inv_w[0], out.inv_w[1], out.inv_w[2]});
     out.z_hi = std::max({out.inv_w[0], out.inv_w[1], out.inv_w[2]});
-  }
-  if (out.min_x > out.max_x || out.min_y > out.max_y) {
-    ++stats.dropped_degenerate;
-    return false;
   }
   return true;
 }
