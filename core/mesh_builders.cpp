@@ -1,6 +1,7 @@
 #include "core/mesh_builders.h"
 
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 
@@ -116,6 +117,55 @@ void add_cylinder(Mesh& mesh, vec3 base, float radius, float height, int segment
     for (int s = 0; s < segments; ++s)
       add_oriented(mesh, centre, centre + 1 + uint32_t(s), centre + 2 + uint32_t(s), n);
   }
+}
+
+void add_torus(Mesh& mesh, vec3 centre, vec3 axis, float major, float minor, int major_segments,
+               int minor_segments) {
+  SL_CHECK(major_segments >= 3 && minor_segments >= 3);
+  SL_CHECK(minor > 0.0f && major > minor && glm::length(axis) > 0.0f);
+  const vec3 a = glm::normalize(axis);
+  vec3 u = glm::cross(a, vec3(0.0f, 1.0f, 0.0f));
+  if (glm::length(u) < 1e-3f) u = glm::cross(a, vec3(1.0f, 0.0f, 0.0f));
+  u = glm::normalize(u);
+  const vec3 v = glm::cross(a, u);
+  // Angle tables once per call (not per vertex): the 1M-triangle scenes build in milliseconds.
+  const size_t n_phi = static_cast<size_t>(major_segments);
+  const size_t n_theta = static_cast<size_t>(minor_segments);
+  std::vector<float> cos_phi(n_phi), sin_phi(n_phi), cos_theta(n_theta), sin_theta(n_theta);
+  for (int i = 0; i < major_segments; ++i) {
+    const float phi = 2.0f * kPi * float(i) / float(major_segments);
+    cos_phi[size_t(i)] = std::cos(phi);
+    sin_phi[size_t(i)] = std::sin(phi);
+  }
+  for (int j = 0; j < minor_segments; ++j) {
+    const float theta = 2.0f * kPi * float(j) / float(minor_segments);
+    cos_theta[size_t(j)] = std::cos(theta);
+    sin_theta[size_t(j)] = std::sin(theta);
+  }
+  const uint32_t base = uint32_t(mesh.positions.size());
+  const size_t vertices = size_t(major_segments) * size_t(minor_segments);
+  mesh.positions.reserve(mesh.positions.size() + vertices);
+  mesh.normals.reserve(mesh.normals.size() + vertices);
+  mesh.indices.reserve(mesh.indices.size() + 6 * vertices);
+  for (int i = 0; i < major_segments; ++i) {
+    const vec3 radial = cos_phi[size_t(i)] * u + sin_phi[size_t(i)] * v;
+    for (int j = 0; j < minor_segments; ++j) {
+      const vec3 n = cos_theta[size_t(j)] * radial + sin_theta[size_t(j)] * a;
+      add_vertex(mesh, centre + major * radial + minor * n, n);
+    }
+  }
+  // Both rings wrap around: vertex (i, j) is base + i·minor_segments + j, indices taken modulo.
+  // With (radial, tangent along φ, a) right-handed, (i, j) → (i+1, j) → (i+1, j+1) turns
+  // counter-clockwise seen from outside the tube (normal n = cos θ·radial + sin θ·a).
+  auto id = [&](int i, int j) {
+    return base + uint32_t((i % major_segments) * minor_segments + (j % minor_segments));
+  };
+  for (int i = 0; i < major_segments; ++i)
+    for (int j = 0; j < minor_segments; ++j) {
+      const uint32_t p00 = id(i, j), p10 = id(i + 1, j), p11 = id(i + 1, j + 1),
+                     p01 = id(i, j + 1);
+      mesh.indices.insert(mesh.indices.end(), {p00, p10, p11, p00, p11, p01});
+    }
 }
 
 double signed_volume(const Mesh& mesh) {

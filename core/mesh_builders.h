@@ -23,6 +23,16 @@ void add_uv_sphere(Mesh& mesh, vec3 centre, float radius, int segments, int ring
 // smooth side normals, flat caps. Triangles: 4·segments.
 void add_cylinder(Mesh& mesh, vec3 base, float radius, float height, int segments);
 
+// Torus around `centre` with symmetry axis `axis` (any length > 0): tube of radius `minor`
+// swept along a circle of radius `major` (> minor) in the plane normal to the axis; smooth
+// normals, triangles facing outward. Vertex (i, j), i < major_segments, j < minor_segments:
+//   p = centre + (major + minor·cos θj)·(cos φi·u + sin φi·v) + minor·sin θj·a,
+// φi = 2π·i/major_segments, θj = 2π·j/minor_segments, a = normalize(axis),
+// u = normalize(cross(a, +y)) (cross(a, +x) when a is within ~0.06° of ±y), v = cross(a, u).
+// Triangles: 2·major_segments·minor_segments.
+void add_torus(Mesh& mesh, vec3 centre, vec3 axis, float major, float minor, int major_segments,
+               int minor_segments);
+
 // Signed volume of a mesh (m³): positive when a closed mesh's triangles face outward,
 // negative when they face inward (a room seen from inside).
 double signed_volume(const Mesh& mesh);

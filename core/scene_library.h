@@ -18,7 +18,13 @@ std::vector<std::string> builtin_scene_names();
 //              placement.
 //   "plane":   one 10 × 10 m floor quad (y = 0, centred on the origin), light 2 m above its
 //              centre, camera looking straight down; nothing occludes (analytic tests).
-// Throws InputError("--scene", "unknown built-in scene 'x' (known: default, plane)").
+//   "room100k": the benchmark room of ../shared/assets/bench/room100k.obj built in (no asset
+//              needed): a 60 × 60 m ground, a 20 × 8 × 20 m room, 32 spheres and 32 tori, one
+//              mesh per OBJ group in OBJ order, the OBJ's light (0, 4, 0) and camera; 99,852
+//              triangles, the OBJ's tessellation (spheres 40 × 20, tori 40 × 20).
+//   "room1m":   the same layout tessellated finer (spheres 128 × 61 = 15,360 triangles, tori
+//              128 × 62 = 15,872): 999,436 triangles. See the .cpp for the layout.
+// Throws InputError("--scene", "unknown built-in scene 'x' (known: default, plane, ...)").
 Scene make_builtin_scene(const std::string& name);
 
 // Loads an OBJ (see core/obj_loader.h) and gives it a camera and a light:

@@ -95,7 +95,7 @@ vec3 ParsedArgs::get_vec3(const std::string& flag, const vec3& fallback) const {
 
 std::vector<FlagDef> common_flags() {
   return {
-      {"--scene", "S", "built-in scene name (default, plane) or an .obj file (default: default)"},
+      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m) or an .obj file (default: default)"},
       {"--width", "W", "image width in pixels (default: the scene's camera, 1024)"},
       {"--height", "H", "image height in pixels (default: the scene's camera, 768)"},
       {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
