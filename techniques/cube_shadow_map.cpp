@@ -117,7 +117,7 @@ struct RadialDepthShader {
   static constexpr bool kKeepsAll = true;
   int res;
   float inv_far;
-  float* out;  // res², row-major
+  float* out;  // res², row-major; may alias the depth target (each texel is read, then written)
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
     const float scale = 2.0f / float(res);
@@ -148,9 +148,14 @@ void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& nee
       map.depth[f].clear();
       continue;
     }
-    map.depth[f].resize(size_t(res) * size_t(res));
-    RadialDepthShader shader{res, 1.0f / scene.light.far, map.depth[f].data()};
+    // Rasterize straight into the face's storage and convert 1/w to radial distance in place
+    // (tile epilogue): one res² buffer per face instead of two.
+    target.inv_w.swap(map.depth[f]);
+    RadialDepthShader shader{res, 1.0f / scene.light.far, nullptr};
+    target.resize(res, res);
+    shader.out = target.inv_w.data();
     const RasterStats st = rasterize(meshes, map.view_proj[f], cull, res, res, target, shader);
+    target.inv_w.swap(map.depth[f]);
     if (submitted) *submitted += st.triangles_in;
     if (culled) *culled += st.culled_frustum;
   }
