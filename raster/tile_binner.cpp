@@ -70,11 +70,24 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
       continue;
     }
     clip[m].resize(meshes[m].vertex_count);
-    std::vector<vec4>& out = clip[m];
-    parallel_for_chunks(mesh.vertex_count, 16384, [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) out[i] = view_proj * vec4(mesh.positions[i], 1.0f);
-    });
   }
+  // One parallel loop over (mesh, vertex range) pieces: scenes of many small meshes would
+  // otherwise run one tiny, effectively serial loop per mesh.
+  struct Piece {
+    size_t mesh, begin, end;
+  };
+  std::vector<Piece> pieces;
+  constexpr size_t kVertexGrain = 8192;
+  for (size_t m = 0; m < meshes.size(); ++m)
+    if (!mesh_culled[m])
+      for (size_t b = 0; b < meshes[m].vertex_count; b += kVertexGrain)
+        pieces.push_back({m, b, std::min(meshes[m].vertex_count, b + kVertexGrain)});
+  parallel_for(0, pieces.size(), [&](size_t k) {
+    const Piece& pc = pieces[k];
+    const vec3* pos = meshes[pc.mesh].positions;
+    vec4* out = clip[pc.mesh].data();
+    for (size_t i = pc.begin; i < pc.end; ++i) out[i] = view_proj * vec4(pos[i], 1.0f);
+  });
   const size_t total = first_triangle.back();
   const float guard_x = float(1.0 + 2.0 * kGuardBandPixels / double(width));
   const float guard_y = float(1.0 + 2.0 * kGuardBandPixels / double(height));
