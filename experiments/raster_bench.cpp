@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     defs.push_back({"--res", "N", "cube face edge in texels (default 1024)"});
     defs.push_back({"--cull", "MODE", "none, back or front (default none)"});
     defs.push_back({"--repeats", "N", "timed repeats after one warm-up, >= 10 (default 15)"});
+    defs.push_back({"--only", "JOB", "cube, gbuffer or lookup: time one job (e.g. under callgrind)"});
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
       std::printf("%s", usage_text("raster_bench [--scene S] [--res N] [--cull MODE] [flags]", defs).c_str());
@@ -55,6 +56,10 @@ int main(int argc, char** argv) {
     if (cull_name == "back") cull = CullMode::Back;
     else if (cull_name == "front") cull = CullMode::Front;
     else if (cull_name != "none") throw InputError("--cull", "expected none, back or front, got '" + cull_name + "'");
+    const std::string only = args.get("--only", "");
+    if (!only.empty() && only != "cube" && only != "gbuffer" && only != "lookup")
+      throw InputError("--only", "expected cube, gbuffer or lookup, got '" + only + "'");
+    auto want = [&](const char* job) { return only.empty() || only == job; };
     const Scene scene = scene_from_args(args);
 
     std::printf("scene %s: %zu triangles, %d threads, cube faces %d², camera %dx%d, cull %s, %d repeats\n",
@@ -63,14 +68,21 @@ int main(int argc, char** argv) {
     CubeShadowMap map;
     std::array<bool, kCubeFaces> all;
     all.fill(true);
-    print("depth-only cube (6 faces)", time_it(repeats, [&] { render_cube_map(scene, all, res, map, nullptr, nullptr, cull); }));
+    auto cube = [&] { render_cube_map(scene, all, res, map, nullptr, nullptr, cull); };
     GBuffer g;
-    print("camera GBuffer pass", time_it(repeats, [&] { render_gbuffer(scene, g); }));
+    auto gbuffer = [&] { render_gbuffer(scene, g); };
     CubeShadowParams p;
     p.res = res;
     ImageF mask;
     ImageU32 texels;
-    print("CSM lookup pass (pcf=1)", time_it(repeats, [&] { lookup_cube_map(scene, g, map, p, mask, &texels); }));
+    auto lookup = [&] { lookup_cube_map(scene, g, map, p, mask, &texels); };
+    if (want("cube")) print("depth-only cube (6 faces)", time_it(repeats, cube));
+    if (want("gbuffer")) print("camera GBuffer pass", time_it(repeats, gbuffer));
+    if (want("lookup")) {
+      if (!want("cube")) cube();  // the lookup needs a map and a GBuffer, untimed
+      if (!want("gbuffer")) gbuffer();
+      print("CSM lookup pass (pcf=1)", time_it(repeats, lookup));
+    }
     return 0;
   });
 }
