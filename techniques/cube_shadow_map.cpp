@@ -21,8 +21,11 @@ vec2 face_texel_coords(int face, const vec3& dir, int res) {
   return vec2((uv.x * 0.5f + 0.5f) * float(res), (0.5f - uv.y * 0.5f) * float(res));
 }
 
+// Texel of a continuous coordinate, clamped to the face. Truncation equals floor here: they
+// differ only for negative non-integers, which the clamp maps to texel 0 either way (and
+// floorf is a long libm-style sequence on the SSE2 baseline: it was a third of the lookup).
 int clamp_texel(float c, int res) {
-  return std::clamp(int(std::floor(c)), 0, res - 1);
+  return std::clamp(int(std::max(c, -1.0f)), 0, res - 1);
 }
 
 // Visits the texels of a lookup: calls fn(face, x, y, weight) for each, weights summing to 1.
@@ -34,7 +37,12 @@ void for_each_tap(int res, int face, vec2 st, int pcf, Fn&& fn) {
     return;
   }
   const float gx = st.x - 0.5f, gy = st.y - 0.5f;
-  const int bx = int(std::floor(gx)), by = int(std::floor(gy));
+  // floor for |g| < 2^31 without libm: truncate, then step down for negative non-integers.
+  auto floor_int = [](float g) {
+    const int i = int(g);
+    return float(i) > g ? i - 1 : i;
+  };
+  const int bx = floor_int(gx), by = floor_int(gy);
   const float fx = gx - float(bx), fy = gy - float(by);
   const int half = (pcf - 1) / 2;
   const float norm = 1.0f / float(pcf * pcf);
