@@ -1,5 +1,7 @@
 #include "raytrace/visibility.h"
 
+#include "raytrace/face_rays.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -297,57 +299,10 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
 }
 
 PrimaryHits primary_visibility(const EmbreeScene& rt, const Camera& camera) {
-  SL_CHECK(camera.width >= 0 && camera.height >= 0);
-  PrimaryHits hits;
-  hits.width = camera.width;
-  hits.height = camera.height;
-  const size_t count = size_t(camera.width) * size_t(camera.height);
-  hits.mesh_id.assign(count, kNoPrimitive);
-  hits.prim_id.assign(count, kNoPrimitive);
-  hits.depth.assign(count, std::numeric_limits<float>::infinity());
-
-  // Camera basis as glm::lookAtRH builds it: view x = s, view y = u, view −z = f.
-  const dvec3 eye(camera.eye);
-  const dvec3 f = glm::normalize(dvec3(camera.target) - eye);
-  const dvec3 s = glm::normalize(glm::cross(f, dvec3(camera.up)));
-  const dvec3 u = glm::cross(s, f);
-  const double tan_half = std::tan(glm::radians(double(camera.fov_y_deg)) * 0.5);
-  const double aspect = double(camera.width) / double(camera.height);
-
-  const TileGrid grid(camera.width, camera.height);
-  auto* rtc_scene = static_cast<RTCScene>(rt.native_scene());
-  parallel_for(0, grid.count(), [&](size_t t) {
-    RTCRayHit rays[kTile * kTile];
-    size_t pixel[kTile * kTile];
-    unsigned k = 0;
-    for (int y = grid.y0(t); y < grid.y1(t); ++y)
-      for (int x = grid.x0(t); x < grid.x1(t); ++x) {
-        // NDC of the pixel centre; image y points down, NDC y up.
-        const double ndc_x = 2.0 * (x + 0.5) / camera.width - 1.0;
-        const double ndc_y = 1.0 - 2.0 * (y + 0.5) / camera.height;
-        // View-space direction (ndc_x·tan·aspect, ndc_y·tan, −1): its −z component is 1, so
-        // the ray parameter t is the view-space depth.
-        const dvec3 dir = s * (ndc_x * tan_half * aspect) + u * (ndc_y * tan_half) + f;
-        RTCRayHit& r = rays[k];
-        r.ray = make_ray(vec3(eye), vec3(dir), camera.near, camera.far);
-        r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        r.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        pixel[k++] = size_t(y) * size_t(camera.width) + size_t(x);
-      }
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(rtc_scene, &ctx, rays, k, sizeof(RTCRayHit));
-    for (unsigned i = 0; i < k; ++i) {
-      if (rays[i].hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-      hits.mesh_id[pixel[i]] = rays[i].hit.geomID;
-      hits.prim_id[pixel[i]] = rays[i].hit.primID;
-      hits.depth[pixel[i]] = rays[i].ray.tfar;
-    }
-  });
-  rt.throw_if_error("tracing primary rays");
-  return hits;
+  // The camera's own matrices, so the rays go through exactly the pixel centres the
+  // rasterizer samples; hits count from the near to the far plane.
+  return perspective_rays(rt, camera_view(camera), camera_projection(camera), camera.width,
+                          camera.height, camera.far);
 }
 
 }  // namespace shadowlab
