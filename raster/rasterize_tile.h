@@ -64,8 +64,80 @@ inline void shade_pixel(const TriangleSetup& s, int x, int y, int64_t e0, int64_
   }
 }
 
+// Depth-only shaders (kKeepsAll, no attributes): triangle `s` inside the rectangle
+// [x0, x1) × [y0, y1) (a tile) as whole 8×8 blocks through the SIMD kernel. Edge values are
+// stepped from block to block, and the kernel's per-triangle fields are filled once. Same
+// coverage and depth as the generic path, pixel for pixel.
+inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int x1, int y1,
+                                    DepthTarget& depth) {
+  const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
+  const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
+  if (min_x > max_x || min_y > max_y) return;
+  const int64_t half = kSubpixelOne / 2;
+  const size_t width = size_t(depth.width);
+  DepthBlock8 blk;
+  int64_t block_step[3], x_span[3];
+  for (int k = 0; k < 3; ++k) {
+    blk.step_x[k] = s.a[k] * kSubpixelOne;
+    blk.step_y[k] = s.b[k] * kSubpixelOne;
+    block_step[k] = blk.step_x[k] * kBlockSize;
+    x_span[k] = blk.step_x[k] * (kBlockSize - 1);
+  }
+  blk.z0 = s.z0;
+  blk.z_dx = s.z_dx;
+  blk.z_dy = s.z_dy;
+  blk.z_lo = s.z_lo;
+  blk.z_hi = s.z_hi;
+  blk.id = s.triangle;
+  const int bx_start = min_x - (min_x - x0) % kBlockSize;
+  const int by_start = min_y - (min_y - y0) % kBlockSize;
+  for (int by = by_start; by <= max_y; by += kBlockSize) {
+    const int py0 = std::max(by, min_y), py1 = std::min(by + kBlockSize - 1, max_y);
+    blk.oy = py0 - s.min_y;
+    blk.rows = py1 - py0 + 1;
+    int64_t e[3], hi_off[3];
+    for (int k = 0; k < 3; ++k) {
+      e[k] = s.a[k] * (int64_t(bx_start) * kSubpixelOne + half) +
+             s.b[k] * (int64_t(py0) * kSubpixelOne + half) + s.c[k] + s.bias[k];
+      const int64_t dy = blk.step_y[k] * int64_t(py1 - py0);
+      hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, dy);
+    }
+    float* zrow = depth.inv_w.data() + size_t(py0) * width;
+    uint32_t* idrow = depth.with_ids ? depth.ids.data() + size_t(py0) * width : nullptr;
+    for (int bx = bx_start; bx <= max_x;
+         bx += kBlockSize, e[0] += block_step[0], e[1] += block_step[1], e[2] += block_step[2]) {
+      if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
+      if (bx + kBlockSize > x1) {
+        // A block cut by the viewport's right edge: pixel by pixel.
+        for (int y = py0; y <= py1; ++y)
+          for (int x = bx; x < x1; ++x) {
+            const int64_t dx = int64_t(x - bx), dy = int64_t(y - py0);
+            const int64_t e0 = e[0] + blk.step_x[0] * dx + blk.step_y[0] * dy;
+            const int64_t e1 = e[1] + blk.step_x[1] * dx + blk.step_y[1] * dy;
+            const int64_t e2 = e[2] + blk.step_x[2] * dx + blk.step_y[2] * dy;
+            if ((e0 | e1 | e2) < 0) continue;
+            const float iw = plane_depth(s, x, y);
+            float& z = depth.inv_w[size_t(y) * width + size_t(x)];
+            if (iw > z) {
+              z = iw;
+              if (depth.with_ids) depth.ids[size_t(y) * width + size_t(x)] = s.triangle;
+            }
+          }
+        continue;
+      }
+      blk.edge[0] = e[0];
+      blk.edge[1] = e[1];
+      blk.edge[2] = e[2];
+      blk.ox = bx - s.min_x;
+      blk.ids = idrow ? idrow + bx : nullptr;
+      depth_block8(blk, zrow + bx, width);
+    }
+  }
+}
+
 // Rasterizes triangle `s` inside the pixel rectangle [x0, x1) × [y0, y1) (a tile, whose origin
-// is a multiple of kBlockSize), block by block.
+// is a multiple of kBlockSize), block by block, pixel by pixel inside a block: the general
+// path (any shader) and the scalar reference of rasterize_depth_in_rect.
 template <class Shader>
 void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, int y1,
                                 DepthTarget& depth, Shader& shader) {
@@ -86,15 +158,7 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
   for (int by = by_start; by <= max_y; by += kBlockSize) {
     const int py0 = std::max(by, min_y), py1 = std::min(by + kBlockSize - 1, max_y);
     for (int bx = bx_start; bx <= max_x; bx += kBlockSize) {
-      int px0 = std::max(bx, min_x), px1 = std::min(bx + kBlockSize - 1, max_x);
-      if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
-        // Depth-only: widen to the whole 8-pixel block when it lies inside the tile, so the
-        // 8-lane kernel runs; the exact edge test rejects the extra pixels.
-        if (bx + kBlockSize <= x1) {
-          px0 = bx;
-          px1 = bx + kBlockSize - 1;
-        }
-      }
+      const int px0 = std::max(bx, min_x), px1 = std::min(bx + kBlockSize - 1, max_x);
       // Edge extremes over the block's pixel centres (edges are linear: corners suffice).
       bool outside = false, inside = true;
       int64_t e_origin[3];
@@ -109,32 +173,6 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
         inside = inside && lo >= 0;
       }
       if (outside) continue;
-      if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>) {
-        if (px1 - px0 == kBlockSize - 1) {
-          // Depth only: the whole block in one SIMD kernel call (for a block inside the
-          // triangle the coverage lanes are all set and cost next to nothing).
-          DepthBlock8 blk;
-          for (int k = 0; k < 3; ++k) {
-            blk.edge[k] = e_origin[k];
-            blk.step_x[k] = s.a[k] * kSubpixelOne;
-            blk.step_y[k] = s.b[k] * kSubpixelOne;
-          }
-          blk.z0 = s.z0;
-          blk.z_dx = s.z_dx;
-          blk.z_dy = s.z_dy;
-          blk.z_lo = s.z_lo;
-          blk.z_hi = s.z_hi;
-          blk.ox = px0 - s.min_x;
-          blk.oy = py0 - s.min_y;
-          blk.rows = py1 - py0 + 1;
-          if (depth.with_ids) {
-            blk.id = s.triangle;
-            blk.ids = depth.ids.data() + size_t(py0) * size_t(width) + px0;
-          }
-          depth_block8(blk, depth.inv_w.data() + size_t(py0) * size_t(width) + px0, size_t(width));
-          continue;
-        }
-      }
       const int64_t step_x[3] = {s.a[0] * kSubpixelOne, s.a[1] * kSubpixelOne, s.a[2] * kSubpixelOne};
       const int64_t step_y[3] = {s.b[0] * kSubpixelOne, s.b[1] * kSubpixelOne, s.b[2] * kSubpixelOne};
       int64_t row[3] = {e_origin[0], e_origin[1], e_origin[2]};
@@ -178,7 +216,10 @@ void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shade
     }
     for (const BinnedChunk& chunk : frame.chunks)
       for (uint32_t i = chunk.offsets[t]; i < chunk.offsets[t + 1]; ++i)
-        rasterize_triangle_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth, shader);
+        if constexpr (!Shader::kNeedsAttributes && kKeepsAll<Shader>)
+          rasterize_depth_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth);
+        else
+          rasterize_triangle_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth, shader);
     if constexpr (HasFinishTile<Shader>) shader.finish_tile(x0, y0, x1, y1, depth);
   });
 }
