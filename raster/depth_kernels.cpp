@@ -50,10 +50,13 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
                                                        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
   const __m256 zx = _mm256_mul_ps(_mm256_set1_ps(b.z_dx), x);  // z_dx * float(ox + i)
   for (int r = 0; r < b.rows; ++r) {
-    const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
-    const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
-    const int out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
-                         (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
+    int out_bits = 0;
+    if (!b.inside) {
+      const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
+      const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
+      out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
+                 (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
+    }
     if (out_bits != 0xFF) {
       const __m256i covered = _mm256_cmpeq_epi32(
           _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
@@ -72,10 +75,11 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
         _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
       }
     }
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = _mm256_add_epi64(lo[k], dy[k]);
-      hi[k] = _mm256_add_epi64(hi[k], dy[k]);
-    }
+    if (!b.inside)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = _mm256_add_epi64(lo[k], dy[k]);
+        hi[k] = _mm256_add_epi64(hi[k], dy[k]);
+      }
   }
 }
 

@@ -18,6 +18,7 @@ struct DepthBlock8 {
   float z_lo, z_hi;      // clamp range of the plane value
   int ox, oy;            // block origin minus the triangle's (min_x, min_y)
   int rows;              // 1..8
+  bool inside = false;   // every pixel of the block is covered: kernels may skip the edges
   uint32_t id = 0;       // triangle id written where the depth test passes...
   uint32_t* ids = nullptr;  // ...at ids + r · stride + i, when not null
 };

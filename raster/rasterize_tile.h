@@ -95,11 +95,12 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
     const int py0 = std::max(by, min_y), py1 = std::min(by + kBlockSize - 1, max_y);
     blk.oy = py0 - s.min_y;
     blk.rows = py1 - py0 + 1;
-    int64_t e[3], hi_off[3];
+    int64_t e[3], lo_off[3], hi_off[3];
     for (int k = 0; k < 3; ++k) {
       e[k] = s.a[k] * (int64_t(bx_start) * kSubpixelOne + half) +
              s.b[k] * (int64_t(py0) * kSubpixelOne + half) + s.c[k] + s.bias[k];
       const int64_t dy = blk.step_y[k] * int64_t(py1 - py0);
+      lo_off[k] = std::min<int64_t>(0, x_span[k]) + std::min<int64_t>(0, dy);
       hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, dy);
     }
     float* zrow = depth.inv_w.data() + size_t(py0) * width;
@@ -125,6 +126,7 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
           }
         continue;
       }
+      blk.inside = e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
       blk.edge[0] = e[0];
       blk.edge[1] = e[1];
       blk.edge[2] = e[2];

@@ -17,6 +17,7 @@ TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
   std::uniform_int_distribution<int64_t> step(-(int64_t(1) << 24), int64_t(1) << 24);
   std::uniform_real_distribution<float> zf(-2.0f, 2.0f);
   const size_t stride = 13;
+  int inside_cases = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     DepthBlock8 b;
     for (int k = 0; k < 3; ++k) {
@@ -41,6 +42,15 @@ TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
       id_fast[i] = id_slow[i] = 0xFFFFFFFFu;
     }
     DepthBlock8 bf = b, bs = b;
+    // When every pixel of the block is covered (checked here by brute force), the fast path
+    // may take its no-edge branch; it must still match the oracle.
+    bool all_in = true;
+    for (int r = 0; r < b.rows; ++r)
+      for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 3; ++k)
+          all_in = all_in && b.edge[k] + b.step_x[k] * i + b.step_y[k] * r >= 0;
+    bf.inside = all_in;
+    inside_cases += all_in;
     bf.ids = id_fast;
     bs.ids = id_slow;
     fast(bf, z_fast, stride);
@@ -48,6 +58,7 @@ TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
     ASSERT_EQ(0, std::memcmp(z_fast, z_slow, sizeof z_fast)) << "trial " << trial;
     ASSERT_EQ(0, std::memcmp(id_fast, id_slow, sizeof id_fast)) << "trial " << trial;
   }
+  EXPECT_GT(inside_cases, 100) << "the no-edge branch must be exercised";
 }
 
 }  // namespace
