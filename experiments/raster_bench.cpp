@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
+#include "raster/depth_kernels.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/cube_shadow_map.h"
 
@@ -62,9 +63,9 @@ int main(int argc, char** argv) {
     auto want = [&](const char* job) { return only.empty() || only == job; };
     const Scene scene = scene_from_args(args);
 
-    std::printf("scene %s: %zu triangles, %d threads, cube faces %d², camera %dx%d, cull %s, %d repeats\n",
+    std::printf("scene %s: %zu triangles, %d threads, cube faces %d², camera %dx%d, cull %s, %d repeats, %s depth kernel\n",
                 scene.name.c_str(), scene.triangle_count(), thread_count(), res, scene.camera.width,
-                scene.camera.height, cull_name.c_str(), repeats);
+                scene.camera.height, cull_name.c_str(), repeats, depth_kernel_name());
     CubeShadowMap map;
     std::array<bool, kCubeFaces> all;
     all.fill(true);
