@@ -62,6 +62,13 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
   const PixelRays rays(cam);
   parallel_for_chunks(size_t(h), 8, [&](size_t y0, size_t y1) {
     uint32_t m = 0;
+    struct {
+      uint32_t t = kNoPrimitive, m = 0, p = 0;
+      const Mesh* mesh = nullptr;
+      const uint32_t* idx = nullptr;
+      vec3 e1{0.0f}, e2{0.0f}, s{0.0f}, q{0.0f}, gn{0.0f};
+      float e2q = 0.0f;
+    } tri;
     for (size_t y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t i = y * size_t(w) + size_t(x);
@@ -75,38 +82,47 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
           g.covered[i] = 0;
           continue;
         }
-        // Neighbouring pixels mostly see the same mesh: try the previous one first.
-        if (t < first[m] || t >= first[m + 1])
-          m = uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin()) - 1;
-        const Mesh& mesh = scene.meshes[m];
-        const uint32_t p = t - first[m];
-        const uint32_t* idx = &mesh.indices[3 * size_t(p)];
-        const vec3& p0 = mesh.positions[idx[0]];
-        const vec3& p1 = mesh.positions[idx[1]];
-        const vec3& p2 = mesh.positions[idx[2]];
-        const vec3 e1 = p1 - p0, e2 = p2 - p0;
+        // Neighbouring pixels mostly see the same triangle: its per-triangle terms are kept.
+        if (t != tri.t) {
+          if (t < first[m] || t >= first[m + 1])
+            m = uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin()) - 1;
+          tri.t = t;
+          tri.m = m;
+          tri.mesh = &scene.meshes[m];
+          tri.p = t - first[m];
+          tri.idx = &tri.mesh->indices[3 * size_t(tri.p)];
+          const vec3& p0 = tri.mesh->positions[tri.idx[0]];
+          tri.e1 = tri.mesh->positions[tri.idx[1]] - p0;
+          tri.e2 = tri.mesh->positions[tri.idx[2]] - p0;
+          tri.s = rays.eye - p0;
+          tri.q = glm::cross(tri.s, tri.e1);
+          tri.e2q = glm::dot(tri.e2, tri.q);
+          const vec3 n = glm::cross(tri.e1, tri.e2);
+          const float nl = glm::length(n);
+          tri.gn = nl > 0.0f ? n / nl : vec3(0.0f, 1.0f, 0.0f);
+        }
+        const Mesh& mesh = *tri.mesh;
+        const uint32_t p = tri.p;
+        const uint32_t* idx = tri.idx;
         const vec3 d = rays.dir(x, int(y));
-        // Möller–Trumbore without the inside test (the rasterizer decided coverage).
-        const vec3 pv = glm::cross(d, e2);
-        const float det = glm::dot(e1, pv);
+        // Möller–Trumbore without the inside test (the rasterizer decided coverage); the terms
+        // that do not depend on the ray come from the triangle cache.
+        const vec3 pv = glm::cross(d, tri.e2);
+        const float det = glm::dot(tri.e1, pv);
         vec3 l(1.0f / 3.0f);
         float depth = 1.0f / vis.inv_w[i];
         if (std::fabs(det) > 1e-30f) {
           const float inv_det = 1.0f / det;
-          const vec3 s = rays.eye - p0;
-          const float u = glm::dot(s, pv) * inv_det;
-          const vec3 q = glm::cross(s, e1);
-          const float v = glm::dot(d, q) * inv_det;
-          const float tt = glm::dot(e2, q) * inv_det;
+          const float u = glm::dot(tri.s, pv) * inv_det;
+          const float v = glm::dot(d, tri.q) * inv_det;
+          const float tt = tri.e2q * inv_det;
           // Only trust a hit in front of the eye; edge-on triangles keep the raster depth.
           if (std::isfinite(tt) && tt > 0.0f) {
             l = vec3(1.0f - u - v, u, v);
             depth = tt;
           }
         }
-        vec3 gn = glm::cross(e1, e2);
-        const float gl = glm::length(gn);
-        gn = gl > 0.0f ? gn / gl : vec3(0.0f, 1.0f, 0.0f);
+        vec3 gn = tri.gn;
         const vec3 pos = rays.eye + depth * d;
         vec3 sn = gn;
         if (!mesh.normals.empty()) {
@@ -126,7 +142,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
         g.geo_normal[i] = gn;
         g.uv[i] = uv;
         g.depth[i] = depth;
-        g.mesh_id[i] = m;
+        g.mesh_id[i] = tri.m;
         g.prim_id[i] = p;
         g.covered[i] = 1;
       }
