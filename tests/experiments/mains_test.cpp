@@ -66,6 +66,10 @@ TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error("resolution_sweep --spp abc --out " + out, "--spp");
   expect_clear_error("metric /no/such/test.exr /no/such/ref.exr", "/no/such/test.exr");
   expect_clear_error("metric only_one.exr", "two files");
+  expect_clear_error("raster_bench --cull sideways", "--cull");
+  expect_clear_error("raster_bench --repeats 3", "--repeats");
+  expect_clear_error("raster_bench --res 0", "--res");
+  expect_clear_error("raster_bench --only everything", "--only");
 }
 
 TEST(Mains, RenderWritesMaskTexelsAndTiming) {
