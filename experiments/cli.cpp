@@ -13,26 +13,21 @@
 #include "core/error.h"
 #include "core/obj_loader.h"
 #include "core/parallel.h"
+#include "core/parse_number.h"
 #include "core/scene_library.h"
 
 namespace shadowlab {
 namespace {
 
 double parse_double(const std::string& flag, const std::string& s) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-    throw InputError(flag, "expected a number, got '" + s + "'");
+  double v = 0.0;
+  if (!shadowlab::parse_double(s, v)) throw InputError(flag, "expected a number, got '" + s + "'");
   return v;
 }
 
 long parse_long(const std::string& flag, const std::string& s) {
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || errno == ERANGE)
-    throw InputError(flag, "expected an integer, got '" + s + "'");
+  long v = 0;
+  if (!shadowlab::parse_long(s, v)) throw InputError(flag, "expected an integer, got '" + s + "'");
   return v;
 }
 
@@ -133,7 +128,7 @@ ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
     if (!def) throw InputError(a, "unknown flag (see --help)");
     if (def->value.empty()) {
       if (inline_value) throw InputError(a, "takes no value");
-      args.values[a] = "1";
+      args.values.insert_or_assign(a, std::string(1, '1'));  // (not = "1": GCC 12 -Wrestrict false positive)
       continue;
     }
     if (!inline_value) {

@@ -1,11 +1,9 @@
 #include "techniques/technique_spec.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 
 #include "core/error.h"
+#include "core/parse_number.h"
 
 namespace shadowlab {
 
@@ -63,36 +61,36 @@ std::vector<std::string> split_spec_list(const std::string& text) {
 SpecReader::SpecReader(const TechniqueSpec& spec, std::string flag)
     : spec_(spec), flag_(std::move(flag)) {}
 
-double SpecReader::get_double(const std::string& key, double fallback, double lo, double hi) {
-  used_.push_back(key);
-  const auto it = spec_.params.find(key);
-  if (it == spec_.params.end()) return fallback;
-  const char* s = it->second.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s, &end);
-  if (end == s || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-    throw InputError(flag_, spec_.name + ": '" + key + "' expects a number, got '" + it->second + "'");
+namespace {
+
+// Looks up `key`, parses it with `parse` and checks [lo, hi]; `what` names the expected kind.
+template <class T, class Parse>
+T get_number(const TechniqueSpec& spec, const std::string& flag, std::vector<std::string>& used,
+             const std::string& key, T fallback, T lo, T hi, Parse parse, const char* what) {
+  used.push_back(key);
+  const auto it = spec.params.find(key);
+  if (it == spec.params.end()) return fallback;
+  T v{};
+  if (!parse(it->second, v))
+    throw InputError(flag, spec.name + ": '" + key + "' expects " + what + ", got '" + it->second + "'");
   if (v < lo || v > hi)
-    throw InputError(flag_, spec_.name + ": '" + key + "' = " + it->second + " is outside [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw InputError(flag, spec.name + ": '" + key + "' = " + it->second + " is outside [" +
+                               std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return v;
 }
 
+}  // namespace
+
+double SpecReader::get_double(const std::string& key, double fallback, double lo, double hi) {
+  return get_number<double>(spec_, flag_, used_, key, fallback, lo, hi,
+                            [](const std::string& s, double& v) { return parse_double(s, v); },
+                            "a number");
+}
+
 int SpecReader::get_int(const std::string& key, int fallback, int lo, int hi) {
-  used_.push_back(key);
-  const auto it = spec_.params.find(key);
-  if (it == spec_.params.end()) return fallback;
-  const char* s = it->second.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(s, &end, 10);
-  if (end == s || *end != '\0' || errno == ERANGE)
-    throw InputError(flag_, spec_.name + ": '" + key + "' expects an integer, got '" + it->second + "'");
-  if (v < lo || v > hi)
-    throw InputError(flag_, spec_.name + ": '" + key + "' = " + it->second + " is outside [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return int(v);
+  return int(get_number<long>(spec_, flag_, used_, key, fallback, lo, hi,
+                              [](const std::string& s, long& v) { return parse_long(s, v); },
+                              "an integer"));
 }
 
 bool SpecReader::get_bool(const std::string& key, bool fallback) {
