@@ -49,9 +49,17 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
   const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(b.ox),
                                                        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
   const __m256 zx = _mm256_mul_ps(_mm256_set1_ps(b.z_dx), x);  // z_dx * float(ox + i)
-  for (int r = 0; r < b.rows; ++r) {
+  // Everything the rows need, in registers: the stores below may alias `b` as far as the
+  // compiler knows, which would otherwise reload every field on every row.
+  const float z0 = b.z0, z_dy = b.z_dy;
+  const __m256 z_lo = _mm256_set1_ps(b.z_lo), z_hi = _mm256_set1_ps(b.z_hi);
+  const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(b.id)));
+  uint32_t* const ids = b.ids;
+  const bool inside = b.inside;
+  const int rows = b.rows, oy = b.oy;
+  for (int r = 0; r < rows; ++r) {
     int out_bits = 0;
-    if (!b.inside) {
+    if (!inside) {
       const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
       const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
       out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
@@ -60,22 +68,19 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
     if (out_bits != 0xFF) {
       const __m256i covered = _mm256_cmpeq_epi32(
           _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
-      const float zy = b.z0 + b.z_dy * float(b.oy + r);
-      const __m256 iw = _mm256_min_ps(
-          _mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), _mm256_set1_ps(b.z_lo)),
-          _mm256_set1_ps(b.z_hi));
+      const float zy = z0 + z_dy * float(oy + r);
+      const __m256 iw = _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
       float* row = z + size_t(r) * stride;
       const __m256 old = _mm256_loadu_ps(row);
       const __m256 nearer =
           _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), _mm256_castsi256_ps(covered));
       _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
-      if (b.ids) {
-        float* idr = reinterpret_cast<float*>(b.ids + size_t(r) * stride);
-        const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(b.id)));
+      if (ids) {
+        float* idr = reinterpret_cast<float*>(ids + size_t(r) * stride);
         _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
       }
     }
-    if (!b.inside)
+    if (!inside)
       for (int k = 0; k < 3; ++k) {
         lo[k] = _mm256_add_epi64(lo[k], dy[k]);
         hi[k] = _mm256_add_epi64(hi[k], dy[k]);
