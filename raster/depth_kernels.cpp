@@ -40,9 +40,9 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
   // Per edge, lanes 0-3 and 4-7 of the first row; each row adds step_y to every lane.
   __m256i lo[3], hi[3], dy[3];
   for (int k = 0; k < 3; ++k) {
-    const int64_t e = b.edge[k], s = b.step_x[k];
-    lo[k] = _mm256_set_epi64x(e + 3 * s, e + 2 * s, e + s, e);
-    hi[k] = _mm256_set_epi64x(e + 7 * s, e + 6 * s, e + 5 * s, e + 4 * s);
+    const __m256i e = _mm256_set1_epi64x(b.edge[k]);
+    lo[k] = _mm256_add_epi64(e, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b.lane_x[k])));
+    hi[k] = _mm256_add_epi64(e, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b.lane_x[k] + 4)));
     dy[k] = _mm256_set1_epi64x(b.step_y[k]);
   }
   const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);

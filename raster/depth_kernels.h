@@ -14,6 +14,7 @@ namespace shadowlab {
 // pixel, step_x/step_y the per-pixel and per-row increments; row r writes z + r · stride.
 struct DepthBlock8 {
   int64_t edge[3], step_x[3], step_y[3];
+  int64_t lane_x[3][8];  // step_x[k] · i for i = 0..7 (filled once per triangle by the caller)
   float z0, z_dx, z_dy;  // the triangle's plane (see TriangleSetup)
   float z_lo, z_hi;      // clamp range of the plane value
   int ox, oy;            // block origin minus the triangle's (min_x, min_y)

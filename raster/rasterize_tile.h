@@ -81,6 +81,7 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
     blk.step_x[k] = s.a[k] * kSubpixelOne;
     blk.step_y[k] = s.b[k] * kSubpixelOne;
     block_step[k] = blk.step_x[k] * kBlockSize;
+    for (int i = 0; i < kBlockSize; ++i) blk.lane_x[k][i] = blk.step_x[k] * i;
     x_span[k] = blk.step_x[k] * (kBlockSize - 1);
   }
   blk.z0 = s.z0;

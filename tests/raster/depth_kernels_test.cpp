@@ -26,6 +26,8 @@ TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
       b.step_x[k] = step(rng);
       b.step_y[k] = step(rng);
     }
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 8; ++i) b.lane_x[k][i] = b.step_x[k] * i;
     b.z0 = zf(rng) + 2.5f;
     b.z_dx = zf(rng) * 0.01f;
     b.z_dy = zf(rng) * 0.01f;
