@@ -99,7 +99,7 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
     int64_t e[3], lo_off[3], hi_off[3];
     for (int k = 0; k < 3; ++k) {
       e[k] = s.a[k] * (int64_t(bx_start) * kSubpixelOne + half) +
-             s.b[k] * (int64_t(py0) * kSubpixelOne + half) + s.c[k] + s.bias[k];
+             s.b[k] * (int64_t(py0) * kSubpixelOne + half) + s.c[k];
       const int64_t dy = blk.step_y[k] * int64_t(py1 - py0);
       lo_off[k] = std::min<int64_t>(0, x_span[k]) + std::min<int64_t>(0, dy);
       hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, dy);
@@ -154,7 +154,7 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
   // Exact biased edge value at pixel (x, y).
   auto edge = [&](int k, int x, int y) {
     return s.a[k] * (int64_t(x) * kSubpixelOne + half) + s.b[k] * (int64_t(y) * kSubpixelOne + half) +
-           s.c[k] + s.bias[k];
+           s.c[k];
   };
   const int bx_start = min_x - (min_x - x0) % kBlockSize;
   const int by_start = min_y - (min_y - y0) % kBlockSize;

@@ -63,9 +63,9 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
     const int64_t dx = x[j] - x[i], dy = y[j] - y[i];
     out.a[k] = -dy;
     out.b[k] = dx;
-    out.c[k] = dy * x[i] - dx * y[i];
     const bool top_left = (dy == 0 && dx > 0) || dy < 0;
-    out.bias[k] = top_left ? 0 : -1;
+    out.bias[k] = int8_t(top_left ? 0 : -1);
+    out.c[k] = dy * x[i] - dx * y[i] + out.bias[k];
   }
   out.area2 = area2;
   const int64_t half = kSubpixelOne / 2;

@@ -9,11 +9,13 @@
 namespace shadowlab {
 
 struct TriangleSetup {
-  // Edge k (opposite vertex k) at a fixed-point sample point (px, py):
-  //   E_k = a[k] * px + b[k] * py + c[k]; a pixel is covered iff E_k + bias[k] >= 0 for all k,
-  // where bias is 0 on top and left edges and -1 otherwise (the top-left rule on exact
-  // integers, so a pixel centre on an edge shared by two triangles is covered exactly once).
-  int64_t a[3], b[3], c[3], bias[3];
+  // Biased edge k (opposite vertex k) at a fixed-point sample point (px, py):
+  //   E_k = a[k] * px + b[k] * py + c[k]; a pixel is covered iff E_k >= 0 for all k. c holds
+  // the fill-rule bias: 0 on top and left edges and -1 otherwise (the top-left rule on exact
+  // integers, so a pixel centre on an edge shared by two triangles is covered exactly once);
+  // the exact edge value is E_k - bias[k].
+  int64_t a[3], b[3], c[3];
+  int8_t bias[3];
   int64_t area2;                 // twice the area, fixed point squared, > 0
   int min_x, min_y, max_x, max_y;  // covered-pixel bounds, inclusive, clamped to the viewport
   float inv_w[3];                // 1/w at the vertices
