@@ -149,21 +149,27 @@ void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& nee
   map.res = res;
   set_view_projs(scene.light, map);
   const std::vector<MeshView> meshes = scene_mesh_views(scene);
-  DepthTarget target;
+  // The faces are independent: render them concurrently (each face's binning and tiles are
+  // parallel loops of their own, so the scheduler balances faces of unequal cost). Stats are
+  // summed in face order afterwards; no output depends on the schedule.
+  std::array<RasterStats, kCubeFaces> stats{};
   for (int f = 0; f < kCubeFaces; ++f) {
     map.rendered[f] = needed[f];
-    if (!needed[f]) {
-      map.depth[f].clear();
-      continue;
-    }
+    if (!needed[f]) map.depth[f].clear();
+  }
+  parallel_for(0, kCubeFaces, [&](size_t fi) {
+    const int f = int(fi);
+    if (!needed[f]) return;
     // Rasterize straight into the face's storage and convert 1/w to radial distance in place
-    // (tile epilogue): one res² buffer per face instead of two.
+    // (tile epilogue): one res² buffer per face.
+    DepthTarget target;
     target.inv_w.swap(map.depth[f]);
-    RadialDepthShader shader{res, 1.0f / scene.light.far, nullptr};
     target.resize(res, res);
-    shader.out = target.inv_w.data();
-    const RasterStats st = rasterize(meshes, map.view_proj[f], cull, res, res, target, shader);
+    RadialDepthShader shader{res, 1.0f / scene.light.far, target.inv_w.data()};
+    stats[f] = rasterize(meshes, map.view_proj[f], cull, res, res, target, shader);
     target.inv_w.swap(map.depth[f]);
+  });
+  for (const RasterStats& st : stats) {
     if (submitted) *submitted += st.triangles_in;
     if (culled) *culled += st.culled_frustum;
   }
