@@ -1,5 +1,7 @@
 #include "raster/clip.h"
 
+#include <cmath>
+
 namespace shadowlab {
 namespace {
 
@@ -22,18 +24,21 @@ float frustum_distance(int plane, const vec4& p) { return plane_distance(plane, 
 
 }  // namespace
 
+uint32_t vertex_outcode(const vec4& v, float guard_x, float guard_y) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))
+    return kOutNonFinite;
+  uint32_t code = 0;
+  for (int p = 0; p < kPlanes; ++p) {
+    if (frustum_distance(p, v) < 0.0f) code |= 1u << p;
+    if (plane_distance(p, v, guard_x, guard_y) < 0.0f) code |= 1u << (5 + p);
+  }
+  return code;
+}
+
 ClipClass classify_triangle(const vec4& a, const vec4& b, const vec4& c, float guard_x,
                             float guard_y) {
-  for (int p = 0; p < kPlanes; ++p)
-    if (frustum_distance(p, a) < 0.0f && frustum_distance(p, b) < 0.0f &&
-        frustum_distance(p, c) < 0.0f)
-      return ClipClass::Outside;
-  for (int p = 0; p < kPlanes; ++p)
-    if (plane_distance(p, a, guard_x, guard_y) < 0.0f ||
-        plane_distance(p, b, guard_x, guard_y) < 0.0f ||
-        plane_distance(p, c, guard_x, guard_y) < 0.0f)
-      return ClipClass::NeedsClip;
-  return ClipClass::Inside;
+  return classify_outcodes(vertex_outcode(a, guard_x, guard_y), vertex_outcode(b, guard_x, guard_y),
+                           vertex_outcode(c, guard_x, guard_y));
 }
 
 ClipPolygon clip_triangle(const vec4& a, const vec4& b, const vec4& c, float guard_x,

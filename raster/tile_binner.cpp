@@ -13,10 +13,6 @@ namespace {
 // balance two or more threads.
 constexpr size_t kChunkTriangles = 8192;
 
-bool finite4(const vec4& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
-}
-
 void add_stats(RasterStats& into, const RasterStats& s) {
   into.triangles_in += s.triangles_in;
   into.culled_frustum += s.culled_frustum;
@@ -58,6 +54,7 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
 
   // Whole meshes outside the frustum are skipped; the rest get one transform per vertex.
   std::vector<std::vector<vec4>> clip(meshes.size());
+  std::vector<std::vector<uint32_t>> outcode(meshes.size());  // per vertex, see vertex_outcode
   std::vector<size_t> first_triangle(meshes.size() + 1, 0);
   std::vector<uint8_t> mesh_culled(meshes.size(), 0);
   for (size_t m = 0; m < meshes.size(); ++m) {
@@ -70,7 +67,10 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
       continue;
     }
     clip[m].resize(meshes[m].vertex_count);
+    outcode[m].resize(meshes[m].vertex_count);
   }
+  const float guard_x = float(1.0 + 2.0 * kGuardBandPixels / double(width));
+  const float guard_y = float(1.0 + 2.0 * kGuardBandPixels / double(height));
   // One parallel loop over (mesh, vertex range) pieces: scenes of many small meshes would
   // otherwise run one tiny, effectively serial loop per mesh.
   struct Piece {
@@ -86,11 +86,13 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
     const Piece& pc = pieces[k];
     const vec3* pos = meshes[pc.mesh].positions;
     vec4* out = clip[pc.mesh].data();
-    for (size_t i = pc.begin; i < pc.end; ++i) out[i] = view_proj * vec4(pos[i], 1.0f);
+    uint32_t* code = outcode[pc.mesh].data();
+    for (size_t i = pc.begin; i < pc.end; ++i) {
+      out[i] = view_proj * vec4(pos[i], 1.0f);
+      code[i] = vertex_outcode(out[i], guard_x, guard_y);  // once per vertex, not per corner
+    }
   });
   const size_t total = first_triangle.back();
-  const float guard_x = float(1.0 + 2.0 * kGuardBandPixels / double(width));
-  const float guard_y = float(1.0 + 2.0 * kGuardBandPixels / double(height));
 
   const size_t chunk_count = (total + kChunkTriangles - 1) / kChunkTriangles;
   frame.chunks.resize(chunk_count);
@@ -116,11 +118,13 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
       const vec4& b = clip[m][idx[1]];
       const vec4& c = clip[m][idx[2]];
       ++st.triangles_in;
-      if (!finite4(a) || !finite4(b) || !finite4(c)) {
+      const uint32_t* oc = outcode[m].data();
+      const uint32_t ca = oc[idx[0]], cb = oc[idx[1]], cc = oc[idx[2]];
+      if ((ca | cb | cc) & kOutNonFinite) {
         ++st.dropped_nonfinite;
         continue;
       }
-      const ClipClass cls = classify_triangle(a, b, c, guard_x, guard_y);
+      const ClipClass cls = classify_outcodes(ca, cb, cc);
       if (cls == ClipClass::Outside) {
         ++st.culled_frustum;
         continue;
