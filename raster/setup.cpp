@@ -22,9 +22,9 @@ bool setup_triangle(const ClipVertex& v0, const ClipVertex& v1, const ClipVertex
   for (int i = 0; i < 3; ++i) {
     // Viewport transform in double, then round to the fixed-point grid. y flips: NDC y up,
     // screen y down.
-    const double w = v[i]->clip.w;
-    const double sx = (double(v[i]->clip.x) / w * 0.5 + 0.5) * double(width);
-    const double sy = (0.5 - double(v[i]->clip.y) / w * 0.5) * double(height);
+    const double inv_w = 1.0 / double(v[i]->clip.w);  // one divide per vertex
+    const double sx = (double(v[i]->clip.x) * inv_w * 0.5 + 0.5) * double(width);
+    const double sy = (0.5 - double(v[i]->clip.y) * inv_w * 0.5) * double(height);
     sxy[i][0] = sx;
     sxy[i][1] = sy;
     fx[i] = std::llrint(sx * double(kSubpixelOne));
