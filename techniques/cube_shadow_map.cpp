@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "raster/pipeline.h"
+#include "techniques/cube_lookup_simd.h"
 
 namespace shadowlab {
 namespace {
@@ -204,7 +205,16 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
   // PCF compares the receiver's depth with texels up to (pcf+1)/2 texels away, on a plane
   // tilted by the angle to the light, so the slope term grows with the footprint radius.
   const float footprint = 0.5f * float(p.pcf + 1);
+  // The AVX2 path for pcf=1 (its scalar oracle is the loop body below).
+  const CubeLookup8Fn simd = p.pcf <= 1 ? cube_lookup8_simd() : nullptr;
+  CubeLookupConsts consts{light.position, inv_far, p.bias, p.slope * footprint * texel_angle, res, {}};
+  for (int f = 0; f < kCubeFaces; ++f)
+    consts.face_depth[f] = map.depth[f].empty() ? nullptr : map.depth[f].data();
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
+    if (simd)
+      for (; b + 8 <= e; b += 8)
+        simd(consts, &g.position[b].x, &g.geo_normal[b].x, &g.covered[b], &mask.data[b],
+             texels ? &texels->data[b] : nullptr);
     for (size_t i = b; i < e; ++i) {
       if (texels) texels->data[i] = kNoTexel;
       if (!g.covered[i]) {

@@ -125,26 +125,27 @@ TEST(Mains, RenderIsIdenticalForOneTwoAndSevenThreads) {
   }
 }
 
-// The scalar rasterizer path (SHADOWLAB_SCALAR=1) and the SIMD one give identical files for a
-// whole render (camera pass and cube map), on the default scene and on an OBJ.
+// The scalar paths (SHADOWLAB_SCALAR=1) and the SIMD ones give identical files for a whole
+// render (camera pass, cube map, and the pcf=1 lookup), on the default scene and on an OBJ.
 TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   std::vector<std::string> scenes = {"default"};
   if (!test::assets_dir().empty()) scenes.push_back(test::assets_dir() + "/bunny/stanford-bunny.obj");
-  for (const std::string& scene : scenes) {
+  for (const std::string& scene : scenes)
+  for (const std::string spec : {"csm:res=512,pcf=3", "csm:res=256"}) {  // pcf=1: SIMD lookup
     std::vector<std::string> masks, texels;
     for (const char* env : {"SHADOWLAB_SCALAR=1 ", "SHADOWLAB_SCALAR=0 "}) {
       const std::string out = test::binary_path(std::string("render_path_") + env[17]);
       std::filesystem::remove_all(out);
       const std::string cmd = std::string(env) + SHADOWLAB_BINARY_DIR + "/experiments/render --scene " +
-                              scene + " --technique csm:res=512,pcf=3 --width 200 --height 150 "
+                              scene + " --technique " + spec + " --width 200 --height 150 "
                               "--repeats 1 --out " + out + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
       masks.push_back(file_bytes(out + "/mask.exr"));
       texels.push_back(file_bytes(out + "/texel.exr"));
     }
     ASSERT_FALSE(masks[0].empty());
-    EXPECT_EQ(masks[0], masks[1]) << scene;
-    EXPECT_EQ(texels[0], texels[1]) << scene;
+    EXPECT_EQ(masks[0], masks[1]) << scene << " " << spec;
+    EXPECT_EQ(texels[0], texels[1]) << scene << " " << spec;
   }
 }
 
