@@ -118,6 +118,18 @@ std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer
 
 namespace {
 
+// One row of the epilogue below. Branch-free so it vectorizes: an empty texel (1/w = 0)
+// divides to +inf, "nothing seen". Compiled twice (AVX2 and baseline, chosen at run time);
+// sqrt, multiply and divide are exact IEEE operations, so both clones give the same bits.
+__attribute__((target_clones("avx2", "default"))) void radial_row(const float* src, float* dst,
+                                                                 int x0, int x1, float v,
+                                                                 float scale, float inv_far) {
+  for (int x = x0; x < x1; ++x) {
+    const float u = (float(x) + 0.5f) * scale - 1.0f;
+    dst[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / src[x];
+  }
+}
+
 // Depth-only shader whose tile epilogue turns 1/w into normalised radial distance: the ray
 // through texel centre (u, v) has direction (u, v, -1) in view space (tan 45° = 1), so
 // |p - L| = view depth × sqrt(1 + u² + v²).
@@ -134,11 +146,7 @@ struct RadialDepthShader {
       const float v = 1.0f - (float(y) + 0.5f) * scale;
       const float* src = depth.inv_w.data() + size_t(y) * size_t(res);
       float* dst = out + size_t(y) * size_t(res);
-      // Branch-free so it vectorizes: an empty texel (1/w = 0) divides to +inf, "nothing seen".
-      for (int x = x0; x < x1; ++x) {
-        const float u = (float(x) + 0.5f) * scale - 1.0f;
-        dst[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / src[x];
-      }
+      radial_row(src, dst, x0, x1, v, scale, inv_far);
     }
   }
 };
