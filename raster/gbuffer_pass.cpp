@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "raster/gbuffer_resolve_simd.h"
 #include "raster/pipeline.h"
 
 namespace shadowlab {
@@ -34,11 +35,11 @@ struct PixelRays {
 
 GBuffer render_gbuffer(const Scene& scene, RasterStats* stats) {
   GBuffer g;
-  render_gbuffer(scene, g, stats);
+  render_gbuffer(scene, g, stats, true);
   return g;
 }
 
-void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
+void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool allow_simd) {
   const Camera& cam = scene.camera;
   const int w = cam.width, h = cam.height;
   g.reshape(w, h);
@@ -60,6 +61,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
   // written, covered or not.
   const std::vector<uint32_t> first = scene_first_triangles(scene);
   const PixelRays rays(cam);
+  const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
   parallel_for_chunks(size_t(h), 8, [&](size_t y0, size_t y1) {
     uint32_t m = 0;
     struct {
@@ -69,10 +71,46 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats) {
       vec3 e1{0.0f}, e2{0.0f}, s{0.0f}, q{0.0f}, gn{0.0f};
       float e2q = 0.0f;
     } tri;
+    ResolveRun8 run;  // the SIMD path's copy of the cached triangle's terms
+    uint32_t run_t = kNoPrimitive;
     for (size_t y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t i = y * size_t(w) + size_t(x);
         const uint32_t t = vis.ids[i];
+        if (simd && t != kNoPrimitive && x + 8 <= w && t == tri.t &&
+            std::all_of(&vis.ids[i + 1], &vis.ids[i + 8], [t](uint32_t o) { return o == t; })) {
+          // Eight pixels on the cached triangle: the AVX2 path, same bits as the code below.
+          if (run_t != t) {
+            run_t = t;
+            run.eye = rays.eye;
+            run.forward = rays.forward;
+            run.right = rays.right;
+            run.up = rays.up;
+            run.sx = rays.sx;
+            run.sy = rays.sy;
+            run.width = rays.width;
+            run.height = rays.height;
+            run.e1 = tri.e1;
+            run.e2 = tri.e2;
+            run.s = tri.s;
+            run.q = tri.q;
+            run.gn = tri.gn;
+            run.e2q = tri.e2q;
+            for (int k = 0; k < 3; ++k) {
+              run.n[k] = tri.mesh->normals.empty() ? nullptr : &tri.mesh->normals[tri.idx[k]];
+              run.uv[k] = tri.mesh->uvs.empty() ? nullptr : &tri.mesh->uvs[tri.idx[k]];
+            }
+          }
+          simd(run, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i], &g.geo_normal[i],
+               &g.uv[i], &g.depth[i]);
+          for (size_t k = i; k < i + 8; ++k) {
+            g.mesh_id[k] = tri.m;
+            g.prim_id[k] = tri.p;
+            g.covered[k] = 1;
+          }
+          x += 7;
+          continue;
+        }
         if (t == kNoPrimitive) {
           g.position[i] = vec3(0.0f);
           g.normal[i] = g.geo_normal[i] = vec3(0.0f);

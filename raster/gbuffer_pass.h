@@ -12,6 +12,8 @@ namespace shadowlab {
 // Geometric and shading normals are flipped to face the camera (two-sided surfaces).
 GBuffer render_gbuffer(const Scene& scene, RasterStats* stats = nullptr);
 // Same, into an existing GBuffer whose storage is reused (timing loops: no page faults).
-void render_gbuffer(const Scene& scene, GBuffer& out, RasterStats* stats = nullptr);
+// allow_simd = false forces the scalar resolve, the oracle of the AVX2 one (tests).
+void render_gbuffer(const Scene& scene, GBuffer& out, RasterStats* stats = nullptr,
+                    bool allow_simd = true);
 
 }  // namespace shadowlab

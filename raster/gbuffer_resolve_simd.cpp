@@ -1,0 +1,131 @@
+#include "raster/gbuffer_resolve_simd.h"
+
+#include <cstdlib>
+#include <cstring>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define SHADOWLAB_HAVE_X86 1
+#endif
+
+namespace shadowlab {
+
+#ifdef SHADOWLAB_HAVE_X86
+namespace {
+
+#define SL_AVX2 __attribute__((target("avx2")))
+
+struct V3 {
+  __m256 x, y, z;
+};
+
+SL_AVX2 inline __m256 bc(float v) { return _mm256_set1_ps(v); }
+SL_AVX2 inline V3 bc3(const vec3& v) { return {bc(v.x), bc(v.y), bc(v.z)}; }
+// glm::dot order: (a.x·b.x + a.y·b.y) + a.z·b.z.
+SL_AVX2 inline __m256 dot(const V3& a, const V3& b) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)),
+                       _mm256_mul_ps(a.z, b.z));
+}
+// glm::cross: (x.y·y.z − y.y·x.z, x.z·y.x − y.z·x.x, x.x·y.y − y.x·x.y).
+SL_AVX2 inline V3 cross(const V3& a, const V3& b) {
+  return {_mm256_sub_ps(_mm256_mul_ps(a.y, b.z), _mm256_mul_ps(b.y, a.z)),
+          _mm256_sub_ps(_mm256_mul_ps(a.z, b.x), _mm256_mul_ps(b.z, a.x)),
+          _mm256_sub_ps(_mm256_mul_ps(a.x, b.y), _mm256_mul_ps(b.x, a.y))};
+}
+// ((l0·a + l1·b) + l2·c), componentwise: glm's l.x*a + l.y*b + l.z*c.
+SL_AVX2 inline __m256 interp(__m256 l0, __m256 l1, __m256 l2, float a, float b, float c) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(l0, bc(a)), _mm256_mul_ps(l1, bc(b))),
+                       _mm256_mul_ps(l2, bc(c)));
+}
+SL_AVX2 inline __m256 select(__m256 mask, __m256 if_true, __m256 if_false) {
+  return _mm256_blendv_ps(if_false, if_true, mask);
+}
+SL_AVX2 inline void store3(vec3* out, const V3& v) {
+  alignas(32) float t[3][8];
+  _mm256_store_ps(t[0], v.x);
+  _mm256_store_ps(t[1], v.y);
+  _mm256_store_ps(t[2], v.z);
+  for (int i = 0; i < 8; ++i) out[i] = vec3(t[0][i], t[1][i], t[2][i]);
+}
+
+SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* inv_w,
+                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
+                               float* depth_out) {
+  const __m256 zero = _mm256_setzero_ps(), one = bc(1.0f), sign = bc(-0.0f);
+  // Ray directions, as PixelRays::dir.
+  const __m256 xs = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x),
+                                                        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  const __m256 nx = _mm256_sub_ps(
+      _mm256_mul_ps(_mm256_div_ps(_mm256_add_ps(xs, bc(0.5f)), bc(float(r.width))), bc(2.0f)), one);
+  const float nys = (1.0f - (float(y) + 0.5f) / float(r.height) * 2.0f) * r.sy;
+  const __m256 nxs = _mm256_mul_ps(nx, bc(r.sx));
+  const V3 d = {_mm256_add_ps(_mm256_add_ps(bc(r.forward.x), _mm256_mul_ps(nxs, bc(r.right.x))), bc(nys * r.up.x)),
+                _mm256_add_ps(_mm256_add_ps(bc(r.forward.y), _mm256_mul_ps(nxs, bc(r.right.y))), bc(nys * r.up.y)),
+                _mm256_add_ps(_mm256_add_ps(bc(r.forward.z), _mm256_mul_ps(nxs, bc(r.right.z))), bc(nys * r.up.z))};
+  // Möller–Trumbore with the triangle's constant terms.
+  const V3 pv = cross(d, bc3(r.e2));
+  const __m256 det = dot(bc3(r.e1), pv);
+  __m256 depth = _mm256_div_ps(one, _mm256_loadu_ps(inv_w));
+  __m256 l0 = bc(1.0f / 3.0f), l1 = l0, l2 = l0;
+  const __m256 ok_det = _mm256_cmp_ps(_mm256_andnot_ps(sign, det), bc(1e-30f), _CMP_GT_OQ);
+  const __m256 inv_det = _mm256_div_ps(one, det);
+  const __m256 u = _mm256_mul_ps(dot(bc3(r.s), pv), inv_det);
+  const __m256 v = _mm256_mul_ps(dot(d, bc3(r.q)), inv_det);
+  const __m256 tt = _mm256_mul_ps(bc(r.e2q), inv_det);
+  const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(sign, tt), bc(__builtin_inff()), _CMP_LT_OQ);
+  const __m256 hit = _mm256_and_ps(_mm256_and_ps(ok_det, finite), _mm256_cmp_ps(tt, zero, _CMP_GT_OQ));
+  l0 = select(hit, _mm256_sub_ps(_mm256_sub_ps(one, u), v), l0);
+  l1 = select(hit, u, l1);
+  l2 = select(hit, v, l2);
+  depth = select(hit, tt, depth);
+  const V3 pos = {_mm256_add_ps(bc(r.eye.x), _mm256_mul_ps(depth, d.x)),
+                  _mm256_add_ps(bc(r.eye.y), _mm256_mul_ps(depth, d.y)),
+                  _mm256_add_ps(bc(r.eye.z), _mm256_mul_ps(depth, d.z))};
+  V3 gn = bc3(r.gn);
+  V3 sn = gn;
+  if (r.n[0]) {
+    const V3 n = {interp(l0, l1, l2, r.n[0]->x, r.n[1]->x, r.n[2]->x),
+                  interp(l0, l1, l2, r.n[0]->y, r.n[1]->y, r.n[2]->y),
+                  interp(l0, l1, l2, r.n[0]->z, r.n[1]->z, r.n[2]->z)};
+    const __m256 nl = _mm256_sqrt_ps(dot(n, n));
+    const __m256 pos_len = _mm256_cmp_ps(nl, zero, _CMP_GT_OQ);
+    sn = {select(pos_len, _mm256_div_ps(n.x, nl), sn.x), select(pos_len, _mm256_div_ps(n.y, nl), sn.y),
+          select(pos_len, _mm256_div_ps(n.z, nl), sn.z)};
+  }
+  // Two-sided: both normals face the eye.
+  const V3 to_eye = {_mm256_sub_ps(bc(r.eye.x), pos.x), _mm256_sub_ps(bc(r.eye.y), pos.y),
+                     _mm256_sub_ps(bc(r.eye.z), pos.z)};
+  const __m256 flip_g = _mm256_and_ps(_mm256_cmp_ps(dot(gn, to_eye), zero, _CMP_LT_OQ), sign);
+  gn = {_mm256_xor_ps(gn.x, flip_g), _mm256_xor_ps(gn.y, flip_g), _mm256_xor_ps(gn.z, flip_g)};
+  const __m256 flip_s = _mm256_and_ps(_mm256_cmp_ps(dot(sn, gn), zero, _CMP_LT_OQ), sign);
+  sn = {_mm256_xor_ps(sn.x, flip_s), _mm256_xor_ps(sn.y, flip_s), _mm256_xor_ps(sn.z, flip_s)};
+  store3(position, pos);
+  store3(normal, sn);
+  store3(geo_normal, gn);
+  _mm256_storeu_ps(depth_out, depth);
+  if (r.uv[0]) {
+    alignas(32) float tu[8], tv[8];
+    _mm256_store_ps(tu, interp(l0, l1, l2, r.uv[0]->x, r.uv[1]->x, r.uv[2]->x));
+    _mm256_store_ps(tv, interp(l0, l1, l2, r.uv[0]->y, r.uv[1]->y, r.uv[2]->y));
+    for (int i = 0; i < 8; ++i) uv[i] = vec2(tu[i], tv[i]);
+  } else {
+    for (int i = 0; i < 8; ++i) uv[i] = vec2(0.0f);
+  }
+}
+
+#undef SL_AVX2
+
+}  // namespace
+#endif
+
+ResolveRun8Fn resolve_run8_simd() {
+  const char* force = std::getenv("SHADOWLAB_SCALAR");
+  if (force && std::strcmp(force, "1") == 0) return nullptr;
+#ifdef SHADOWLAB_HAVE_X86
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2")) return resolve_run8_avx2;
+#endif
+  return nullptr;
+}
+
+}  // namespace shadowlab

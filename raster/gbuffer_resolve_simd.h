@@ -1,0 +1,33 @@
+#pragma once
+// AVX2 path of the GBuffer resolve for 8 neighbouring pixels of one row that all show the same
+// triangle (two thirds of the 8-pixel runs on room100k at 1024×768). It performs the scalar
+// resolve's IEEE operations in the same order (gbuffer_pass.cpp is its oracle), so the GBuffer
+// is bit-identical either way; a test compares both.
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace shadowlab {
+
+// The per-triangle terms and camera constants the 8 pixels share.
+struct ResolveRun8 {
+  // Camera: d = (forward + (nx·sx)·right) + (ny·sy)·up for the pixel centre (nx, ny in NDC).
+  vec3 eye, forward, right, up;
+  float sx, sy;
+  int width, height;
+  // Triangle: Möller–Trumbore terms (e1, e2, s = eye − p0, q = s × e1, e2·q), unit normal.
+  vec3 e1, e2, s, q, gn;
+  float e2q;
+  const vec3* n[3];   // vertex normals (nullptr: the mesh has none)
+  const vec2* uv[3];  // vertex uvs (nullptr: the mesh has none)
+};
+
+// Resolves pixels x .. x+7 of row y: reads 8 values of 1/w, writes 8 entries of each output.
+using ResolveRun8Fn = void (*)(const ResolveRun8& r, int x, int y, const float* inv_w,
+                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
+                               float* depth);
+
+// The AVX2 path, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
+ResolveRun8Fn resolve_run8_simd();
+
+}  // namespace shadowlab
