@@ -1,13 +1,13 @@
 #include "raster/depth_kernels.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define SHADOWLAB_HAVE_X86 1
 #endif
+
+#include "core/cpu_features.h"
 
 namespace shadowlab {
 
@@ -92,16 +92,13 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
 
 DepthBlock8Fn depth_block8_avx2() {
 #ifdef SHADOWLAB_HAVE_X86
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2")) return depth_block8_avx2_impl;
+  if (cpu_has_avx2()) return depth_block8_avx2_impl;
 #endif
   return nullptr;
 }
 
 DepthBlock8Fn depth_block8_selected() {
-  const char* force = std::getenv("SHADOWLAB_SCALAR");
-  if (force && std::strcmp(force, "1") == 0) return depth_block8_scalar;
-  const DepthBlock8Fn fast = depth_block8_avx2();
+  const DepthBlock8Fn fast = use_avx2_paths() ? depth_block8_avx2() : nullptr;
   return fast ? fast : depth_block8_scalar;
 }
 

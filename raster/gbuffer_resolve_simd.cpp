@@ -1,12 +1,12 @@
 #include "raster/gbuffer_resolve_simd.h"
 
-#include <cstdlib>
-#include <cstring>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
 #define SHADOWLAB_HAVE_X86 1
 #endif
+
+#include "core/cpu_features.h"
 
 namespace shadowlab {
 
@@ -119,11 +119,8 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
 #endif
 
 ResolveRun8Fn resolve_run8_simd() {
-  const char* force = std::getenv("SHADOWLAB_SCALAR");
-  if (force && std::strcmp(force, "1") == 0) return nullptr;
 #ifdef SHADOWLAB_HAVE_X86
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2")) return resolve_run8_avx2;
+  if (use_avx2_paths()) return resolve_run8_avx2;
 #endif
   return nullptr;
 }

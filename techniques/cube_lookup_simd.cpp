@@ -1,12 +1,13 @@
 #include "techniques/cube_lookup_simd.h"
 
-#include <cstdlib>
 #include <cstring>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
 #define SHADOWLAB_HAVE_X86 1
 #endif
+
+#include "core/cpu_features.h"
 
 namespace shadowlab {
 
@@ -116,11 +117,8 @@ __attribute__((target("avx2"))) void lookup8_avx2(const CubeLookupConsts& c, con
 #endif
 
 CubeLookup8Fn cube_lookup8_simd() {
-  const char* force = std::getenv("SHADOWLAB_SCALAR");
-  if (force && std::strcmp(force, "1") == 0) return nullptr;
 #ifdef SHADOWLAB_HAVE_X86
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2")) return lookup8_avx2;
+  if (use_avx2_paths()) return lookup8_avx2;
 #endif
   return nullptr;
 }

@@ -1,0 +1,23 @@
+#include "core/cpu_features.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace shadowlab {
+
+bool cpu_has_avx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+bool use_avx2_paths() {
+  const char* force = std::getenv("SHADOWLAB_SCALAR");
+  if (force && std::strcmp(force, "1") == 0) return false;
+  return cpu_has_avx2();
+}
+
+}  // namespace shadowlab
