@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "techniques/cube_shadow_map.h"
+#include "techniques/face_map_technique.h"
 #include "techniques/ray_traced.h"
 
 namespace shadowlab {
@@ -18,7 +19,15 @@ struct Entry {
 // The registry: one line per technique.
 const Entry kTechniques[] = {
     {"rt", "Embree ray tracing (reference): rt:spp=256,hard=0,seed=1", run_ray_traced},
-    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1", run_cube_shadow_map},
+    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1,normal=0", run_cube_shadow_map},
+    {"tsm", "tetrahedral shadow map (4 faces in quadrants of one ~6·res² texture): "
+            "tsm:res=512,pcf=1,bias=0.01,slope=1,normal=0", run_face_map_technique},
+    {"cvsm", "cube variance shadow map: cvsm:res=512,blur=3,min_variance=1e-6,bleed=0,"
+             "maxdepth_eps=0,slope_moment=0,fp32=0,bias=0,slope=0,normal=0", run_face_map_technique},
+    {"tvsm", "tetrahedral variance shadow map (keys as cvsm)", run_face_map_technique},
+    {"cesm", "cube exponential shadow map: cesm:res=512,blur=3,c=80,bias=0,slope=0,normal=0",
+     run_face_map_technique},
+    {"tesm", "tetrahedral exponential shadow map (keys as cesm)", run_face_map_technique},
 };
 
 const Entry& find(const TechniqueSpec& spec, const char* flag) {
@@ -39,6 +48,7 @@ ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const 
 void validate_technique(const TechniqueSpec& spec, const char* flag) {
   const Entry& e = find(spec, flag);
   if (e.run == run_cube_shadow_map) parse_cube_params(spec, flag);
+  if (e.run == run_face_map_technique) parse_face_map_params(spec, flag);
   if (e.run == run_ray_traced) {
     SpecReader r(spec, flag);
     r.get_int("spp", 256, 1, 1 << 20);

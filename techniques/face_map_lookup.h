@@ -1,0 +1,117 @@
+#pragma once
+// Per-pixel lookup machinery shared by the face-map techniques: the receiver's face, texel
+// coordinates, texel index and biased depth; bilinear taps; and the pixel loop that applies
+// design.md §4's mask rules (no geometry: 1; facing away from the light: 0).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/gbuffer.h"
+#include "core/image.h"
+#include "core/parallel.h"
+#include "core/scene.h"
+#include "techniques/face_map_params.h"
+#include "techniques/light_faces.h"
+#include "techniques/technique.h"
+
+namespace shadowlab {
+
+struct Receiver {
+  int face = 0;
+  vec2 st{0.0f};       // continuous texel coordinates in the face's image
+  float depth = 0.0f;  // biased radial distance / far (what the map's values are compared with)
+  uint32_t texel = 0;  // texel index: face × texels per face + y × width + x
+};
+
+// Computes the lookup of surface point p with geometric normal n (facing the light, p != L):
+// normal offset, face, texel coordinates, constant + slope bias. `reach` is the filter's reach
+// in texels (PCF: (pcf + 1)/2; moment maps: 1) that scales the slope term.
+inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
+                              const FaceMapParams& p, float reach, vec3 pos, const vec3& n) {
+  const float plane_texel = face_texel_plane_size(layout.faces[0]);
+  vec3 to_p = pos - light.position;
+  float dist = glm::length(to_p);
+  const float cos_t = std::clamp(glm::dot(n, -to_p) / dist, 1e-4f, 1.0f);
+  if (p.normal > 0.0f) {
+    // Texel size at the receiver on the face axis: an upper bound of the true size off axis.
+    to_p += n * (p.normal * dist * plane_texel * (1.0f - cos_t));
+    dist = glm::length(to_p);
+  }
+  Receiver r;
+  r.face = face_of(layout, to_p);
+  const LightFace& f = layout.faces[size_t(r.face)];
+  r.st = face_texel_coords(f, to_p);
+  const int tx = std::clamp(int(std::max(r.st.x, -1.0f)), 0, f.width - 1);
+  const int ty = std::clamp(int(std::max(r.st.y, -1.0f)), 0, f.height - 1);
+  r.texel = uint32_t(size_t(r.face) * f.texel_count() + size_t(ty) * size_t(f.width) + size_t(tx));
+  // World size of a texel at the receiver, across the ray: distance × plane size × cos(angle
+  // to the face axis) (plane units shrink by cos towards the face's edge).
+  const float texel_world = dist * plane_texel * glm::dot(to_p, f.forward) / dist;
+  const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 10.0f);
+  const float bias = p.bias + p.slope * reach * texel_world * tan_t;
+  r.depth = (dist - bias) / light.far;
+  return r;
+}
+
+// Bilinear footprint of continuous coordinates st in a w × h image: texels (x0, y0) and
+// (x0 + 1, y0 + 1), clamped to the image, with weights fx, fy of the +1 texels.
+struct Bilinear {
+  int x0, y0, x1, y1;
+  float fx, fy;
+};
+inline Bilinear bilinear_taps(vec2 st, int w, int h) {
+  const float gx = st.x - 0.5f, gy = st.y - 0.5f;
+  const float flx = std::floor(gx), fly = std::floor(gy);
+  Bilinear b;
+  b.fx = gx - flx;
+  b.fy = gy - fly;
+  const int ix = int(flx), iy = int(fly);
+  b.x0 = std::clamp(ix, 0, w - 1);
+  b.x1 = std::clamp(ix + 1, 0, w - 1);
+  b.y0 = std::clamp(iy, 0, h - 1);
+  b.y1 = std::clamp(iy + 1, 0, h - 1);
+  return b;
+}
+
+// Faces the lookups of the covered, light-facing pixels land in (taps stay in the face's guard).
+std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
+                               const FaceMapParams& p);
+
+// The pixel loop: visibility(receiver) for every covered, light-facing pixel; texel indices
+// when `texels` is given. Receivers at the light itself are lit.
+template <class Visibility>
+void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
+                  const FaceMapParams& p, float reach, ImageF& mask, ImageU32* texels,
+                  const Visibility& visibility) {
+  auto shape = [&](auto& img) {
+    img.width = g.width;
+    img.height = g.height;
+    img.channels = 1;
+    img.data.resize(g.pixel_count());
+  };
+  shape(mask);
+  if (texels) shape(*texels);
+  const PointLight& light = scene.light;
+  parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      if (texels) texels->data[i] = kNoTexel;
+      if (!g.covered[i]) {
+        mask.data[i] = 1.0f;
+        continue;
+      }
+      if (!faces_light(g, i, light.position)) {
+        mask.data[i] = 0.0f;
+        continue;
+      }
+      if (glm::length(g.position[i] - light.position) <= 0.0f) {
+        mask.data[i] = 1.0f;
+        continue;
+      }
+      const Receiver r = make_receiver(layout, light, p, reach, g.position[i], g.geo_normal[i]);
+      if (texels) texels->data[i] = r.texel;
+      mask.data[i] = std::clamp(visibility(r), 0.0f, 1.0f);
+    }
+  });
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,24 @@
+#pragma once
+// Renders the faces of a layout (techniques/light_faces.h) as depth-only passes and stores, per
+// texel, the radial distance from the light to the nearest surface through the texel centre,
+// normalised by the light range: |p - L| / far (+inf where the texel saw nothing).
+#include <vector>
+
+#include "core/scene.h"
+#include "raster/raster_types.h"
+#include "techniques/light_faces.h"
+
+namespace shadowlab {
+
+struct FaceDistances {
+  std::vector<std::vector<float>> distance;  // per face: texel_count() values, or empty if not rendered
+  std::vector<bool> rendered;
+  size_t triangles_submitted = 0;  // summed over rendered faces
+  size_t triangles_culled = 0;     // rejected before binning
+};
+
+// Renders the faces with needed[i] set (no face culling). Storage is reused across calls.
+void render_face_distances(const Scene& scene, const FaceLayout& layout,
+                           const std::vector<bool>& needed, FaceDistances& out);
+
+}  // namespace shadowlab

@@ -1,0 +1,74 @@
+#pragma once
+// Face layouts of omnidirectional shadow maps around a point light, in one generic form used by
+// the tetrahedral map and by the moment maps (VSM, ESM) on both layouts.
+//
+// A face is a perspective frustum from the light with its own view axes. Its image is
+// width × height texels (row-major, y down, texel centres at +0.5) covering the rectangle
+// [left, right] × [bottom, top] of the face's image plane at unit distance along `forward`
+// (plane coordinates u = dir·right / dir·forward, v = dir·up / dir·forward). The rectangle
+// includes a guard band of `guard` texels on every side beyond the region the face owns, so
+// filters and PCF taps near a face boundary read real geometry rendered by this face (no
+// cross-face lookups, no seams) as long as their reach is at most the guard.
+//
+// Cube: 6 faces, the order, axes and tie-break of techniques/cube_faces.h; the owned region
+// is the 90° square [-1, 1]², the image is (res + 2·guard)² texels.
+// Tetrahedron: 4 faces with the light-space normals of design.md §6, 109.47° apart; a direction
+// belongs to argmax dot(dir, normal) (ties to the lower index). Each face owns a spherical
+// triangle whose corners are the other three faces' negated normals (70.53° off axis); its
+// gnomonic image is a triangle with circumradius 2√2, one corner along +up. The face's
+// rectangle is that triangle's tight box, [-√6, √6] × [-√2, 2√2] (135.58° × 125.26°, an
+// asymmetric frustum), plus the guard. The four faces are packed as the four quadrants of one
+// S × S texture (face 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right), each face
+// S/2 × S/2 square texels over a 1.155:1 rectangle, so texels are non-square. S is the even
+// size whose texel count is closest to 6·N² for the comparable cube edge N (Kluczek).
+#include <vector>
+
+#include "core/math.h"
+#include "core/scene.h"
+
+namespace shadowlab {
+
+enum class FaceLayoutKind { Cube, Tetrahedron };
+
+struct LightFace {
+  vec3 forward{0.0f}, up{0.0f}, right{0.0f};  // world-space axes (view -z = forward)
+  float left = -1.0f, right_edge = 1.0f;      // plane-coordinate extent in u, guard included
+  float bottom = -1.0f, top = 1.0f;           // plane-coordinate extent in v, guard included
+  int width = 0, height = 0;                  // texels, guard included
+  size_t texel_count() const { return size_t(width) * size_t(height); }
+};
+
+struct FaceLayout {
+  FaceLayoutKind kind = FaceLayoutKind::Cube;
+  int res = 0;    // the spec's res: cube face edge N (for both kinds, the comparable cube edge)
+  int guard = 0;  // guard texels on each side of every face
+  int atlas = 0;  // tetrahedron: edge S of the packed texture; cube: 0
+  std::vector<LightFace> faces;
+};
+
+// Cube layout: faces of (res + 2·guard)² texels.
+FaceLayout cube_layout(int res, int guard);
+// Tetrahedral layout for comparable cube edge `res`: faces of S/2 × S/2 texels, guard included.
+FaceLayout tetra_layout(int res, int guard);
+// Edge S of the tetrahedral texture for cube edge n: the even S with S² closest to 6·n².
+int tetra_atlas_size(int n);
+// Light-space normals of the four tetrahedral faces (unit vectors).
+extern const vec3 kTetraNormals[4];
+
+// Face owning direction `dir` (non-zero) from the light.
+int face_of(const FaceLayout& layout, const vec3& dir);
+// Continuous texel coordinates (x right, y down, centres at +0.5) of `dir` in `face`. Valid
+// for directions in front of the face (dir·forward > 0).
+vec2 face_texel_coords(const LightFace& face, const vec3& dir);
+// Plane coordinates (u, v) of texel centre (x + 0.5, y + 0.5).
+vec2 face_texel_plane(const LightFace& face, float x, float y);
+// World-space unit direction through continuous texel coordinates (sx, sy).
+vec3 face_texel_direction(const LightFace& face, float sx, float sy);
+// World → clip matrix of a face (OpenGL clip space, light near/far planes).
+mat4 face_view_proj(const LightFace& face, const PointLight& light);
+// Plane units per texel along u (the face's texel size at unit distance on its axis).
+inline float face_texel_plane_size(const LightFace& f) {
+  return (f.right_edge - f.left) / float(f.width);
+}
+
+}  // namespace shadowlab

@@ -1,0 +1,31 @@
+#pragma once
+// Filters that turn a face's normalised radial distances (techniques/face_render.h) into the
+// filtered maps of the variance and exponential shadow maps. All are separable box filters of
+// odd width k over a w × h image, clamp-to-edge at the borders (the faces' guard bands keep
+// looked-up texels away from them). Empty texels (+inf, nothing seen) count as distance 1,
+// the light's range. Each output texel depends only on its inputs and a fixed order of
+// additions, so results are identical for any thread count.
+#include <vector>
+
+namespace shadowlab {
+
+// VSM moments filtered in double and stored centred: mean = E[d] and variance = E[d²] − E[d]²,
+// each rounded to float once at the end. Storing the variance itself keeps its relative
+// precision: the fp32 difference of second moments near d = 1 loses everything below ~1.2e-7.
+// slope_term adds ¼((∂d/∂x)² + (∂d/∂y)²) per texel to E[d²] (Krave), with each derivative the
+// smaller-magnitude one-sided difference (so a silhouette's jump does not count).
+void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
+                           std::vector<float>& mean, std::vector<float>& variance);
+// The naive form, kept to measure it: (d, d²) summed and stored in float.
+void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
+                         std::vector<float>& m1, std::vector<float>& m2);
+// Maximum of d over the k × k footprint (Krave's max-depth test).
+void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out);
+// ESM occluder term in log space: out = log( box_k( exp(c·d) ) ), i.e. c × the filtered
+// occluder depth, for any c in (0, 700]. Computed as c·d_min + log(box_k(exp(c·(d − d_min))))
+// in double with d_min the image's smallest distance, so every exponential lies in [1, e^c]
+// (finite in double for c <= 709) and no sum cancels; the naive fp32 exp(c·d) overflows once
+// c·d > 88.7.
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out);
+
+}  // namespace shadowlab
