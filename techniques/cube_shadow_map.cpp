@@ -9,6 +9,7 @@
 #include "core/timer.h"
 #include "raster/pipeline.h"
 #include "techniques/cube_lookup_simd.h"
+#include "techniques/normal_offset.h"
 
 namespace shadowlab {
 namespace {
@@ -78,6 +79,7 @@ CubeShadowParams parse_cube_params(const TechniqueSpec& spec, const char* flag) 
   p.pcf = r.get_int("pcf", p.pcf, 1, 15);
   p.bias = float(r.get_double("bias", p.bias, 0.0, 1e3));
   p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
+  p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
   r.reject_unknown();
   if (p.pcf > 1 && p.pcf % 2 == 0)
     throw InputError(flag, spec.name + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
@@ -99,7 +101,9 @@ std::array<bool, kCubeFaces> cube_faces_needed(const Scene& scene, const GBuffer
     std::array<bool, kCubeFaces>& f = flags[b / grain];
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
-      const vec3 dir = g.position[i] - scene.light.position;
+      const vec3 dir = normal_offset_point(g.position[i], g.geo_normal[i], scene.light.position,
+                                           p.normal, 2.0f / float(p.res)) -
+                       scene.light.position;
       const int face = cube_face_of(dir);
       if (p.pcf <= 1) {
         f[face] = true;
@@ -214,7 +218,7 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
   // tilted by the angle to the light, so the slope term grows with the footprint radius.
   const float footprint = 0.5f * float(p.pcf + 1);
   // The AVX2 path for pcf=1 (its scalar oracle is the loop body below).
-  const CubeLookup8Fn simd = p.pcf <= 1 ? cube_lookup8_simd() : nullptr;
+  const CubeLookup8Fn simd = p.pcf <= 1 && p.normal <= 0.0f ? cube_lookup8_simd() : nullptr;
   CubeLookupConsts consts{light.position, inv_far, p.bias, p.slope * footprint * texel_angle, res, {}};
   for (int f = 0; f < kCubeFaces; ++f)
     consts.face_depth[f] = map.depth[f].empty() ? nullptr : map.depth[f].data();
@@ -233,12 +237,16 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
         mask.data[i] = 0.0f;
         continue;
       }
-      const vec3 to_p = g.position[i] - light.position;
-      const float dist = glm::length(to_p);
-      if (dist <= 0.0f) {  // a receiver at the light itself is lit
+      const vec3 to_p0 = g.position[i] - light.position;
+      if (glm::length(to_p0) <= 0.0f) {  // a receiver at the light itself is lit
         mask.data[i] = 1.0f;
         continue;
       }
+      // The slope term keeps the receiver's own angle; the lookup uses the offset point.
+      const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p0) / glm::length(to_p0), 1e-4f, 1.0f);
+      const vec3 to_p = normal_offset_point(g.position[i], g.geo_normal[i], light.position,
+                                            p.normal, texel_angle) - light.position;
+      const float dist = glm::length(to_p);
       const int face = cube_face_of(to_p);
       const vec2 st = face_texel_coords(face, to_p, res);
       if (texels)
@@ -246,7 +254,6 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
                           uint32_t(clamp_texel(st.y, res)) * uint32_t(res) +
                           uint32_t(clamp_texel(st.x, res));
       // Bias in metres, then normalised like the stored distances.
-      const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p) / dist, 1e-4f, 1.0f);
       const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 10.0f);
       const float bias = p.bias + p.slope * footprint * texel_angle * dist * tan_t;
       const float receiver = (dist - bias) * inv_far;

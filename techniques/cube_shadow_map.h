@@ -9,6 +9,8 @@
 //   bias   constant depth bias, metres
 //   slope  slope-scaled bias: slope × texel size at the receiver × tan(angle to light)
 //          (tan clamped to 10, i.e. N·L >= 0.1) × (pcf + 1)/2 (the filter's reach in texels), metres
+//   normal normal-offset bias: the lookup point moves along the geometric normal by
+//          normal × texel size at the receiver × (1 - N·L) (techniques/normal_offset.h); 0 = off
 #include <array>
 #include <vector>
 
@@ -25,6 +27,7 @@ struct CubeShadowParams {
   int pcf = 1;
   float bias = 0.01f;
   float slope = 1.0f;
+  float normal = 0.0f;
 };
 
 CubeShadowParams parse_cube_params(const TechniqueSpec& spec, const char* flag);

@@ -12,6 +12,7 @@
 #include "core/scene.h"
 #include "techniques/face_map_params.h"
 #include "techniques/light_faces.h"
+#include "techniques/normal_offset.h"
 #include "techniques/technique.h"
 
 namespace shadowlab {
@@ -27,16 +28,12 @@ struct Receiver {
 // normal offset, face, texel coordinates, constant + slope bias. `reach` is the filter's reach
 // in texels (PCF: (pcf + 1)/2; moment maps: 1) that scales the slope term.
 inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
-                              const FaceMapParams& p, float reach, vec3 pos, const vec3& n) {
+                              const FaceMapParams& p, float reach, const vec3& pos, const vec3& n) {
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
-  vec3 to_p = pos - light.position;
-  float dist = glm::length(to_p);
-  const float cos_t = std::clamp(glm::dot(n, -to_p) / dist, 1e-4f, 1.0f);
-  if (p.normal > 0.0f) {
-    // Texel size at the receiver on the face axis: an upper bound of the true size off axis.
-    to_p += n * (p.normal * dist * plane_texel * (1.0f - cos_t));
-    dist = glm::length(to_p);
-  }
+  const vec3 to_p0 = pos - light.position;
+  const float cos_t = std::clamp(glm::dot(n, -to_p0) / glm::length(to_p0), 1e-4f, 1.0f);
+  const vec3 to_p = normal_offset_point(pos, n, light.position, p.normal, plane_texel) - light.position;
+  const float dist = glm::length(to_p);
   Receiver r;
   r.face = face_of(layout, to_p);
   const LightFace& f = layout.faces[size_t(r.face)];

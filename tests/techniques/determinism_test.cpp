@@ -19,6 +19,7 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
   struct Out {
     GBuffer g;
     ShadowResult csm, soft;
+    std::vector<ShadowResult> family;
   };
   std::vector<Out> outs;
   for (int threads : {1, 2, 7}) {
@@ -27,6 +28,9 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
     o.g = render_gbuffer(scene);
     o.csm = test::run("csm:res=256,pcf=3", scene, o.g);
     o.soft = test::run("rt:spp=16", scene, o.g);
+    for (const char* spec : {"tsm:res=128,pcf=3", "cvsm:res=128,slope_moment=1,maxdepth_eps=0.02",
+                             "tvsm:res=128,fp32=1", "cesm:res=128,c=300", "tesm:res=64,normal=1"})
+      o.family.push_back(test::run(spec, scene, o.g));
     outs.push_back(std::move(o));
   }
   set_thread_count(2);
@@ -37,6 +41,10 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
     EXPECT_TRUE(same_bytes(outs[0].csm.mask.data, outs[i].csm.mask.data));
     EXPECT_TRUE(same_bytes(outs[0].csm.texels.data, outs[i].csm.texels.data));
     EXPECT_TRUE(same_bytes(outs[0].soft.mask.data, outs[i].soft.mask.data));
+    for (size_t k = 0; k < outs[0].family.size(); ++k) {
+      EXPECT_TRUE(same_bytes(outs[0].family[k].mask.data, outs[i].family[k].mask.data)) << k;
+      EXPECT_TRUE(same_bytes(outs[0].family[k].texels.data, outs[i].family[k].texels.data)) << k;
+    }
   }
 }
 
