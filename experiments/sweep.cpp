@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/timer.h"
+#include "experiments/contact_sheet.h"
 #include "experiments/output_files.h"
 #include "raster/gbuffer_pass.h"
 
@@ -71,6 +72,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   ref_opt.progress = config.progress;
   out.reference.spec = ref_spec.text;
   out.reference.label = "RT " + std::to_string(config.spp) + "spp";
+  out.reference.technique = ref_spec.name;
   out.reference.result = run_technique(ref_spec, scene, g, ref_opt);
   out.reference.report = compute_metric(out.reference.result.mask, out.reference.result.mask,
                                          nullptr, nullptr, weights, &scratch);
@@ -87,6 +89,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       SweepRow row;
       row.spec = spec.text;
       row.res = res;
+      row.technique = base.name;
       row.label = upper(base.text) + " " + std::to_string(res);
       progress_line(config, done, total, row.label, start);
       RunOptions opt;
@@ -201,6 +204,30 @@ void write_sweep_json(const std::string& path, const SweepResult& r) {
   std::ofstream f(path);
   f << j.dump(2) << "\n";
   if (!f) throw InputError(path, "cannot write");
+}
+
+std::vector<PlotPoint> sweep_plot_points(const SweepResult& r) {
+  std::vector<PlotPoint> points;
+  for (const SweepRow& row : r.rows)
+    points.push_back({row.label, row.technique, row.result.shadow_ms(), row.report.total,
+                      row.report.fidelity});
+  return points;
+}
+
+ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
+  const size_t n_res = config.resolutions.size();
+  // run_resolution_sweep appends rows technique-major, resolution-minor.
+  SL_CHECK_EQ(r.rows.size(), config.techniques.size() * n_res);
+  std::vector<std::string> row_labels, col_labels;
+  std::vector<std::vector<const ImageF*>> cells;
+  for (size_t t = 0; t < config.techniques.size(); ++t) {
+    // The same text as the rows' labels: the canonical spec, upper case.
+    row_labels.push_back(upper(parse_technique_spec(config.techniques[t], "--techniques").text));
+    cells.emplace_back();
+    for (size_t j = 0; j < n_res; ++j) cells.back().push_back(&r.rows[t * n_res + j].result.mask);
+  }
+  for (int res : config.resolutions) col_labels.push_back(std::to_string(res));
+  return contact_sheet(row_labels, col_labels, cells, &r.reference.result.mask);
 }
 
 }  // namespace shadowlab

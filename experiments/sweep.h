@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+#include "experiments/pareto_plot.h"
 #include "metric/shadow_metric.h"
 #include "techniques/technique.h"
 
@@ -22,6 +24,7 @@ struct SweepConfig {
 
 struct SweepRow {
   std::string label;            // "CSM 512", "RT 256spp"
+  std::string technique;        // registry name of the spec, e.g. "csm" ("rt" for the reference)
   std::string spec;             // canonical spec text
   int res = 0;                  // 0 for the reference
   ShadowResult result;
@@ -42,5 +45,12 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config);
 std::string sweep_table(const SweepResult& result);
 void write_sweep_csv(const std::string& path, const SweepResult& result);
 void write_sweep_json(const std::string& path, const SweepResult& result);
+
+// One plot point per technique row (not the reference: compared with itself and without
+// timings, its total is not on the rows' scale): series = technique, time = shadow ms.
+std::vector<PlotPoint> sweep_plot_points(const SweepResult& result);
+// The rows' masks as a contact sheet: one row per config.techniques entry, one column per
+// config.resolutions entry (both in config order), the reference mask as the first column.
+ImageF sweep_contact_sheet(const SweepResult& result, const SweepConfig& config);
 
 }  // namespace shadowlab

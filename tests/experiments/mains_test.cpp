@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../test_paths.h"
+#include "experiments/contact_sheet.h"
 
 namespace shadowlab {
 namespace {
@@ -64,6 +65,7 @@ TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error("render --technique csm --out " + out + " --light-radius -1", "--light-radius");
   expect_clear_error("resolution_sweep --resolutions 128,0 --out " + out, "--resolutions");
   expect_clear_error("resolution_sweep --spp abc --out " + out, "--spp");
+  expect_clear_error("resolution_sweep --plot /no/such/folder/p.svg --out " + out, "--plot");
   expect_clear_error("metric /no/such/test.exr /no/such/ref.exr", "/no/such/test.exr");
   expect_clear_error("metric only_one.exr", "two files");
   expect_clear_error("raster_bench --cull sideways", "--cull");
@@ -149,10 +151,24 @@ TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   }
 }
 
+// Width and height of a PNG from its IHDR chunk (big-endian at bytes 16 and 20); 0 if unreadable.
+std::pair<int, int> png_size(const std::string& path) {
+  const std::string b = file_bytes(path);
+  if (b.size() < 24 || b.compare(1, 3, "PNG") != 0) return {0, 0};
+  auto be32 = [&](size_t i) {
+    return int((uint32_t(uint8_t(b[i])) << 24) | (uint32_t(uint8_t(b[i + 1])) << 16) |
+               (uint32_t(uint8_t(b[i + 2])) << 8) | uint32_t(uint8_t(b[i + 3])));
+  };
+  return {be32(16), be32(20)};
+}
+
 TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   const std::string out = test::binary_path("sweep_out");
+  const std::string plot = test::binary_path("sweep_plot.svg");
+  std::filesystem::remove(out + "/contact_sheet.png");
+  std::filesystem::remove(plot);
   const ProcResult r = run("resolution_sweep --quick --width 96 --height 72 --spp 16 --repeats 1 "
-                    "--resolutions 32,256 --no-cache --out " + out);
+                    "--resolutions 32,256 --no-cache --out " + out + " --plot " + plot);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("RT 16spp            1.000  1.000  1.000  1.000  1.000  1.000  1.000   1.000"),
             std::string::npos) << r.out;
@@ -160,6 +176,24 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   EXPECT_NE(r.out.find("CSM 256"), std::string::npos);
   for (const char* f : {"sweep.csv", "sweep.json", "reference_mask.exr", "csm_256_mask.exr"})
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  EXPECT_NE(r.out.find("contact_sheet.png"), std::string::npos) << r.out;
+  // The contact sheet: one row (CSM), columns REF, 32, 256 of 96×72 masks (no downscale).
+  const auto [w, h] = png_size(out + "/contact_sheet.png");
+  const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "256"}, 96, 72, true);
+  EXPECT_EQ(l.factor, 1);
+  EXPECT_EQ(w, l.width);
+  EXPECT_EQ(h, l.height);
+  // The plot: both rows in each of the two panels, not the reference.
+  const std::string svg = file_bytes(plot);
+  ASSERT_FALSE(svg.empty());
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find(">CSM 32</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">CSM 256</text>"), std::string::npos);
+  EXPECT_EQ(svg.find("RT 16spp"), std::string::npos);
+  size_t markers = 0;
+  for (size_t p = svg.find("class=\"pt\""); p != std::string::npos; p = svg.find("class=\"pt\"", p + 1))
+    ++markers;
+  EXPECT_EQ(markers, 4u);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/scene_library.h"
+#include "experiments/contact_sheet.h"
 #include "experiments/sweep.h"
 
 namespace shadowlab {
@@ -25,10 +26,37 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
   EXPECT_LT(r.rows[0].report.detail, r.rows[1].report.detail);
   EXPECT_LT(r.rows[1].report.detail, r.rows[2].report.detail);
   EXPECT_LT(r.rows[0].report.fidelity, r.rows[2].report.fidelity);
+  EXPECT_EQ(r.reference.technique, "rt");
   for (const SweepRow& row : r.rows) {
+    EXPECT_EQ(row.technique, "csm");
     EXPECT_GT(row.result.shadow_ms(), 0.0);
     EXPECT_GE(row.result.faces_rendered, 1);
     EXPECT_LE(row.result.faces_rendered, 6);
+  }
+  // Plot points: one per row (not the reference), carrying the row's numbers.
+  const std::vector<PlotPoint> points = sweep_plot_points(r);
+  ASSERT_EQ(points.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(points[i].label, r.rows[i].label);
+    EXPECT_EQ(points[i].series, "csm");
+    EXPECT_EQ(points[i].time_ms, r.rows[i].result.shadow_ms());
+    EXPECT_EQ(points[i].total, r.rows[i].report.total);
+    EXPECT_EQ(points[i].fidelity, r.rows[i].report.fidelity);
+  }
+  // Contact sheet: 1 technique row, REF + 3 resolution columns of 256×192 masks (factor 1), so
+  // each cell holds its mask unchanged, reference first.
+  const ImageF sheet = sweep_contact_sheet(r, c);
+  const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "128", "512"}, 256, 192, true);
+  ASSERT_EQ(l.factor, 1);
+  ASSERT_EQ(sheet.width, l.width);
+  ASSERT_EQ(sheet.height, l.height);
+  for (int col = 0; col < 4; ++col) {
+    const ImageF& m = col == 0 ? r.reference.result.mask : r.rows[size_t(col - 1)].result.mask;
+    int differ = 0;
+    for (int y = 0; y < 192; ++y)
+      for (int x = 0; x < 256; ++x)
+        differ += sheet.at(l.cell_x(col) + x, l.cell_y(0) + y) != m.at(x, y);
+    EXPECT_EQ(differ, 0) << "column " << col;
   }
 }
 

@@ -1,0 +1,37 @@
+#pragma once
+// Quality-versus-cost plot of a sweep (issue 4): a self-contained SVG with two panels — total
+// score and fidelity against shadow time on a log axis — and the Pareto front of each panel.
+#include <string>
+#include <vector>
+
+namespace shadowlab {
+
+// One measured configuration as plotted.
+struct PlotPoint {
+  std::string label;     // text next to the marker, e.g. "CSM 512"
+  std::string series;    // technique name, e.g. "csm"; one colour and marker per series
+  double time_ms = 0.0;  // shadow time (map + lookup), ms; <= 0 is drawn at kPlotMinTimeMs
+  double total = 0.0;    // total score, left panel's y
+  double fidelity = 0.0; // fidelity score, right panel's y
+};
+
+// Smallest time the log axis shows, ms: times <= 0 (a cached reference) are clamped to it.
+constexpr double kPlotMinTimeMs = 1e-3;
+
+// Per point: true iff no other point has cost <= and score >= with at least one strict
+// (lower cost is better, higher score is better). Duplicates do not dominate each other, so
+// both stay on the front. A point with a NaN cost or score is never on the front and dominates
+// nothing. cost and score must have the same size.
+std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vector<double>& score);
+
+// The SVG text: left panel y = total, right panel y = fidelity, x = time_ms (log, decade ticks).
+// Each panel's front (cost = time, score = that panel's y, over all points) is drawn as a
+// staircase through its points in time order, and its points are ringed. Deterministic: every
+// number has fixed precision. Points with a non-finite time or y are left out of that panel.
+std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title);
+
+// Writes pareto_svg(points, title) to path; throws InputError(path, "cannot write").
+void write_pareto_svg(const std::string& path, const std::vector<PlotPoint>& points,
+                      const std::string& title);
+
+}  // namespace shadowlab

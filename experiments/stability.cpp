@@ -1,0 +1,28 @@
+// stability: the stiff and extreme cases (design.md §8) for every map-based technique, each row
+// with its error against Embree hard shadows and its expected bound. Exit code 1 if a bound fails.
+#include <cstdio>
+
+#include "core/parallel.h"
+#include "experiments/cli.h"
+#include "experiments/stability_cases.h"
+
+using namespace shadowlab;
+
+int main(int argc, char** argv) {
+  return run_main(argc, argv, [](int argc, char** argv) {
+    std::vector<FlagDef> defs = {{"--threads", "N", "worker threads (default: all cores)"},
+                                 {"--help", "", "print this help"}};
+    const ParsedArgs args = parse_args(argc, argv, defs);
+    if (args.has("--help")) {
+      std::printf("%s", usage_text("stability [flags]", defs).c_str());
+      return 0;
+    }
+    if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
+    const std::vector<StabilityRow> rows = run_stability_cases();
+    std::printf("%s", stability_table(rows).c_str());
+    size_t failed = 0;
+    for (const StabilityRow& r : rows) failed += r.pass ? 0 : 1;
+    std::printf("%zu rows, %zu outside their bound\n", rows.size(), failed);
+    return failed == 0 ? 0 : 1;
+  });
+}

@@ -1,0 +1,192 @@
+// The contact sheet: its size follows the layout formula, each cell is exactly the box-filtered
+// mask (checked against a brute-force average), and labels only ink the margins.
+#include <gtest/gtest.h>
+
+#include <bitset>
+#include <random>
+
+#include "core/error.h"
+#include "experiments/bitmap_font.h"
+#include "experiments/contact_sheet.h"
+
+namespace shadowlab {
+namespace {
+
+ImageF random_mask(int w, int h, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  ImageF m(w, h, 1);
+  for (float& v : m.data) v = u(rng);
+  return m;
+}
+
+// Mean of the source pixels of output pixel (x, y) for factor k, cut at the image edge.
+double brute_box(const ImageF& m, int k, int x, int y) {
+  double sum = 0.0;
+  int n = 0;
+  for (int sy = k * y; sy < k * y + k; ++sy)
+    for (int sx = k * x; sx < k * x + k; ++sx)
+      if (sx < m.width && sy < m.height) {
+        sum += m.at(sx, sy);
+        ++n;
+      }
+  return sum / n;
+}
+
+// Number of set pixels in the glyphs of text at scale 1.
+int glyph_pixels(const std::string& text) {
+  int n = 0;
+  for (char c : text)
+    for (int r = 0; r < kGlyphHeight; ++r) n += int(std::bitset<8>(glyph_rows(c)[r]).count());
+  return n;
+}
+
+ContactSheetStyle small_style() {
+  ContactSheetStyle s;
+  s.max_cell_width = 32;
+  s.font_scale = 2;
+  s.padding = 6;
+  s.separator = 2;
+  return s;
+}
+
+TEST(ContactSheet, SizeFollowsTheLayoutFormula) {
+  // 102×61 masks, cells at most 64 wide: factor ceil(102/64) = 2, cells ceil(102/2) = 51 ×
+  // ceil(61/2) = 31. Widest row label "TSM:PCF=3" is 9 glyphs: 9·6·2 − 2 = 106 px, so
+  // left = 6 + 106 + 6 = 118; top = 6 + 14 + 6 = 26. Columns REF + 3.
+  ContactSheetStyle style = small_style();
+  style.max_cell_width = 64;
+  const std::vector<std::string> rows = {"CSM", "TSM:PCF=3"}, cols = {"128", "256", "512"};
+  const ImageF m = random_mask(102, 61, 1);
+  const std::vector<std::vector<const ImageF*>> cells = {{&m, &m, &m}, {&m, nullptr, &m}};
+  const ImageF sheet = contact_sheet(rows, cols, cells, &m, style);
+  EXPECT_EQ(sheet.channels, 1);
+  EXPECT_EQ(sheet.width, 118 + 4 * 51 + 3 * 2 + 6);
+  EXPECT_EQ(sheet.height, 26 + 2 * 31 + 1 * 2 + 6);
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 102, 61, true, style);
+  EXPECT_EQ(l.factor, 2);
+  EXPECT_EQ(l.cell_width, 51);
+  EXPECT_EQ(l.cell_height, 31);
+  EXPECT_EQ(l.font_scale, 2);
+  EXPECT_EQ(l.left, 118);
+  EXPECT_EQ(l.top, 26);
+  EXPECT_EQ(l.cell_x(2), 118 + 2 * 53);
+  EXPECT_EQ(l.cell_y(1), 26 + 33);
+  // Without the reference there is one column fewer.
+  const ImageF no_ref = contact_sheet(rows, cols, cells, nullptr, style);
+  EXPECT_EQ(no_ref.width, sheet.width - 51 - 2);
+  EXPECT_EQ(no_ref.height, sheet.height);
+}
+
+TEST(ContactSheet, FontShrinksWhenColumnLabelsWouldOverlap) {
+  // Cells of ceil(102/4) = 26 px: "1024" at scale 2 is 46 px > 26 + 2, at scale 1 it is 23 px.
+  const ContactSheetLayout l = contact_sheet_layout({"TSM:PCF=3"}, {"1024"}, 102, 61, false, small_style());
+  EXPECT_EQ(l.cell_width, 26);
+  EXPECT_EQ(l.font_scale, 1);
+  EXPECT_EQ(l.left, 6 + 53 + 6);
+  EXPECT_EQ(l.top, 6 + 7 + 6);
+  EXPECT_EQ(l.width, 65 + 26 + 6);
+  // "512" at scale 2 is 34 px: still too wide for 28 → scale 1 too; "64" (22 px) fits at 2.
+  EXPECT_EQ(contact_sheet_layout({"A"}, {"512"}, 102, 61, false, small_style()).font_scale, 1);
+  EXPECT_EQ(contact_sheet_layout({"A"}, {"64"}, 102, 61, false, small_style()).font_scale, 2);
+}
+
+TEST(ContactSheet, DefaultStyleKeepsCellsAtMost256Wide) {
+  for (int w : {96, 256, 257, 320, 1024, 1920}) {
+    const ContactSheetLayout l = contact_sheet_layout({"A"}, {"1"}, w, 10, false);
+    EXPECT_LE(l.cell_width, 256) << w;
+    if (w <= 256) {
+      EXPECT_EQ(l.factor, 1) << w;
+    } else {
+      EXPECT_GE(l.cell_width, 129) << w;  // the smallest factor that fits: not over-shrunk
+    }
+  }
+}
+
+TEST(ContactSheet, CellsAreTheBoxDownscaledMasks) {
+  const std::vector<std::string> rows = {"CSM", "TSM"}, cols = {"64", "128"};
+  const ImageF ref = random_mask(102, 61, 10);
+  const ImageF a = random_mask(102, 61, 11), b = random_mask(102, 61, 12),
+               c = random_mask(102, 61, 13);
+  const std::vector<std::vector<const ImageF*>> cells = {{&a, &b}, {&c, nullptr}};
+  const ContactSheetStyle style = small_style();
+  const ImageF sheet = contact_sheet(rows, cols, cells, &ref, style);
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 102, 61, true, style);
+  const ImageF* expected[2][3] = {{&ref, &a, &b}, {&ref, &c, nullptr}};
+  for (int r = 0; r < 2; ++r)
+    for (int col = 0; col < 3; ++col)
+      for (int y = 0; y < l.cell_height; ++y)
+        for (int x = 0; x < l.cell_width; ++x) {
+          const float got = sheet.at(l.cell_x(col) + x, l.cell_y(r) + y);
+          const ImageF* m = expected[r][col];
+          const double want = m ? brute_box(*m, 4, x, y) : 0.5;  // null cell: mid-grey
+          ASSERT_NEAR(got, want, 1e-6) << "row " << r << " col " << col << " at " << x << "," << y;
+        }
+  // Between neighbouring cells and in the frame around the grid: the separator grey; outside
+  // the frame: background.
+  EXPECT_EQ(sheet.at(l.cell_x(1) - 1, l.cell_y(0) + 3), style.separator_value);
+  EXPECT_EQ(sheet.at(l.cell_x(1) + 2, l.cell_y(1) - 1), style.separator_value);
+  EXPECT_EQ(sheet.at(l.left - 1, l.cell_y(1)), style.separator_value);
+  EXPECT_EQ(sheet.at(l.left - l.separator - 1, l.cell_y(1) + 1), style.background);
+  EXPECT_EQ(sheet.at(sheet.width - 1, sheet.height - 1), style.background);
+  EXPECT_EQ(sheet.at(l.cell_x(2) + l.cell_width, l.cell_y(1) + l.cell_height), style.separator_value);
+}
+
+TEST(ContactSheet, BoxDownscaleByOneIsIdentityAndAveragesPartialBlocks) {
+  const ImageF m = random_mask(7, 5, 3);
+  EXPECT_EQ(box_downscale(m, 1).data, m.data);
+  ImageF ramp(5, 1, 1);
+  for (int x = 0; x < 5; ++x) ramp.at(x, 0) = float(x);
+  const ImageF half = box_downscale(ramp, 2);
+  ASSERT_EQ(half.width, 3);
+  EXPECT_FLOAT_EQ(half.at(0, 0), 0.5f);
+  EXPECT_FLOAT_EQ(half.at(1, 0), 2.5f);
+  EXPECT_FLOAT_EQ(half.at(2, 0), 4.0f);  // the lone edge pixel, not (4 + 0) / 2
+}
+
+TEST(ContactSheet, LabelsInkOnlyTheMargins) {
+  // Cells of 0.6 and a null (0.5) cell: any pixel darker than 0.1 is label ink.
+  const std::vector<std::string> rows = {"CSM", "RT"}, cols = {"32", "1024"};
+  ImageF grey(80, 60, 1, 0.6f);
+  const std::vector<std::vector<const ImageF*>> cells = {{&grey, &grey}, {&grey, nullptr}};
+  const ContactSheetStyle style = small_style();
+  const ImageF sheet = contact_sheet(rows, cols, cells, &grey, style);
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 80, 60, true, style);
+  std::vector<int> ink_in_row(2, 0), ink_in_col(3, 0);
+  for (int y = 0; y < sheet.height; ++y)
+    for (int x = 0; x < sheet.width; ++x) {
+      if (sheet.at(x, y) >= 0.1f) continue;
+      ASSERT_TRUE(x < l.left || y < l.top) << "ink inside the grid at " << x << "," << y;
+      for (int r = 0; r < 2; ++r)
+        if (x < l.left && y >= l.cell_y(r) && y < l.cell_y(r) + l.cell_height) ++ink_in_row[r];
+      for (int c = 0; c < 3; ++c)
+        if (y < l.top && x >= l.cell_x(c) && x < l.cell_x(c) + l.cell_width) ++ink_in_col[c];
+    }
+  // Every row and column (REF included) carries exactly its label's glyph pixels, each a
+  // font_scale² block (labels here fit their cell, so none spills past the counted span).
+  const int s2 = l.font_scale * l.font_scale;
+  EXPECT_EQ(ink_in_row[0], s2 * glyph_pixels("CSM"));
+  EXPECT_EQ(ink_in_row[1], s2 * glyph_pixels("RT"));
+  EXPECT_EQ(ink_in_col[0], s2 * glyph_pixels("REF"));
+  EXPECT_EQ(ink_in_col[1], s2 * glyph_pixels("32"));
+  EXPECT_EQ(ink_in_col[2], s2 * glyph_pixels("1024"));
+  // The top margin above the grid's frame holds only background and ink.
+  for (int y = 0; y < l.top - l.separator; ++y)
+    for (int x = 0; x < sheet.width; ++x)
+      ASSERT_TRUE(sheet.at(x, y) == style.background || sheet.at(x, y) == style.ink) << x << "," << y;
+}
+
+TEST(ContactSheet, BadMasksAreInputErrors) {
+  const ImageF a(40, 30, 1, 0.5f), b(41, 30, 1, 0.5f), rgb(40, 30, 3, 0.5f);
+  EXPECT_THROW(contact_sheet({"A"}, {"1", "2"}, {{&a, &b}}, nullptr), InputError);
+  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&a}}, &b), InputError);
+  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&rgb}}, nullptr), InputError);
+  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{nullptr}}, nullptr), InputError);
+  EXPECT_THROW(contact_sheet({}, {}, {}, nullptr), InputError);
+  // Only null cells next to a reference are fine: the reference fixes the size.
+  const ImageF ok = contact_sheet({"A"}, {"1"}, {{nullptr}}, &a);
+  EXPECT_GT(ok.width, 2 * 40);
+}
+
+}  // namespace
+}  // namespace shadowlab

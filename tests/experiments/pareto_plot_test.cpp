@@ -1,0 +1,229 @@
+// The Pareto front on hand-made sets with known fronts, and the SVG's structure: one marker and
+// label per point per panel, escaped text, decade ticks, rings on each panel's own front.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <set>
+
+#include "core/error.h"
+#include "experiments/pareto_plot.h"
+#include "test_paths.h"
+
+namespace shadowlab {
+namespace {
+
+size_t count(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + 1)) ++n;
+  return n;
+}
+
+// Texts of every <text class="cls" ...>…</text> element, in document order.
+std::vector<std::string> texts_of_class(const std::string& svg, const std::string& cls) {
+  std::vector<std::string> out;
+  const std::regex re("<text class=\"" + cls + "\"[^>]*>([^<]*)</text>");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator(); ++it)
+    out.push_back((*it)[1].str());
+  return out;
+}
+
+TEST(ParetoFront, EmptyAndSinglePoint) {
+  EXPECT_TRUE(pareto_front({}, {}).empty());
+  EXPECT_EQ(pareto_front({3.0}, {0.2}), std::vector<bool>{true});
+}
+
+TEST(ParetoFront, EveryGainCostsTimeSoAllAreOnTheFront) {
+  // Strictly rising score with strictly rising cost: nothing dominates anything.
+  EXPECT_EQ(pareto_front({1, 2, 3}, {0.1, 0.5, 0.9}), (std::vector<bool>{true, true, true}));
+}
+
+TEST(ParetoFront, DominatedPointsAreOff) {
+  // #1 is slower and worse than #0; #3 is as good as #2 but slower.
+  EXPECT_EQ(pareto_front({1, 2, 3, 4}, {0.5, 0.4, 0.9, 0.9}),
+            (std::vector<bool>{true, false, true, false}));
+  // Input order does not matter: the same set reversed.
+  EXPECT_EQ(pareto_front({4, 3, 2, 1}, {0.9, 0.9, 0.4, 0.5}),
+            (std::vector<bool>{false, true, false, true}));
+}
+
+TEST(ParetoFront, TiesInCostKeepOnlyTheBetterScore) {
+  EXPECT_EQ(pareto_front({2, 2}, {0.3, 0.7}), (std::vector<bool>{false, true}));
+  // Ties in score keep only the cheaper one.
+  EXPECT_EQ(pareto_front({5, 2}, {0.7, 0.7}), (std::vector<bool>{false, true}));
+}
+
+TEST(ParetoFront, DuplicatesDoNotDominateEachOther) {
+  EXPECT_EQ(pareto_front({1, 1, 2}, {0.5, 0.5, 0.4}), (std::vector<bool>{true, true, false}));
+  EXPECT_EQ(pareto_front({1, 1, 2}, {0.5, 0.5, 0.6}), (std::vector<bool>{true, true, true}));
+}
+
+TEST(ParetoFront, NanIsNeverOnTheFrontAndDominatesNothing) {
+  const double nan = std::nan("");
+  EXPECT_EQ(pareto_front({1, nan, 2}, {0.5, 0.9, 0.6}), (std::vector<bool>{true, false, true}));
+  EXPECT_EQ(pareto_front({nan, 1}, {1.0, 0.2}), (std::vector<bool>{false, true}));
+  EXPECT_EQ(pareto_front({0.5, 1}, {nan, 0.2}), (std::vector<bool>{false, true}));
+}
+
+// Seeded property test on sets with many ties: front points do not dominate each other, and
+// every point off the front is dominated by a point on it (dominance is transitive).
+TEST(ParetoFront, FrontIsMutuallyNonDominatedAndCoversTheRest) {
+  auto dominates = [](double ca, double sa, double cb, double sb) {
+    return ca <= cb && sa >= sb && (ca < cb || sa > sb);
+  };
+  for (uint32_t seed = 1; seed <= 50; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> level(0, 5);  // few levels → many ties and duplicates
+    const size_t n = 1 + seed % 30;
+    std::vector<double> cost(n), score(n);
+    for (size_t i = 0; i < n; ++i) {
+      cost[i] = level(rng);
+      score[i] = level(rng) * 0.1;
+    }
+    const std::vector<bool> front = pareto_front(cost, score);
+    ASSERT_EQ(front.size(), n);
+    for (size_t i = 0; i < n; ++i) {
+      bool covered = front[i];
+      for (size_t j = 0; j < n; ++j) {
+        if (front[i] && front[j]) {
+          EXPECT_FALSE(dominates(cost[j], score[j], cost[i], score[i])) << "seed " << seed;
+        }
+        if (!front[i] && front[j] && dominates(cost[j], score[j], cost[i], score[i])) covered = true;
+      }
+      EXPECT_TRUE(covered) << "seed " << seed << " point " << i;
+    }
+  }
+}
+
+std::vector<PlotPoint> sample_points() {
+  // Total front: #0, #1, #3 (#2 is slower and worse than #1). Fidelity front: #0, #2 (#1 and #3
+  // are slower and worse than #0).
+  return {{"CSM 128", "csm", 1.0, 0.5, 0.9},
+          {"CSM 256", "csm", 2.0, 0.7, 0.8},
+          {"TSM 256", "tsm", 4.0, 0.6, 0.95},
+          {"TSM 512", "tsm", 8.0, 0.8, 0.7}};
+}
+
+TEST(ParetoSvg, IsOneSvgElementWithOneMarkerAndLabelPerPointPerPanel) {
+  const std::vector<PlotPoint> points = sample_points();
+  const std::string svg = pareto_svg(points, "sweep");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  std::string trimmed = svg;
+  while (!trimmed.empty() && std::isspace(static_cast<unsigned char>(trimmed.back()))) trimmed.pop_back();
+  EXPECT_TRUE(trimmed.size() >= 6 && trimmed.compare(trimmed.size() - 6, 6, "</svg>") == 0);
+  EXPECT_EQ(count(svg, "<svg"), 1u);
+  EXPECT_EQ(count(svg, "<script"), 0u);
+  EXPECT_EQ(count(svg, "class=\"pt\""), 2 * points.size());
+  const std::vector<std::string> labels = texts_of_class(svg, "lbl");
+  ASSERT_EQ(labels.size(), 2 * points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(labels[i], points[i].label);
+    EXPECT_EQ(labels[points.size() + i], points[i].label);
+  }
+  // One legend marker per series, first-appearance order.
+  EXPECT_EQ(count(svg, "class=\"legend\""), 2u);
+  EXPECT_LT(svg.find(">csm</text>"), svg.find(">tsm</text>"));
+  // Deterministic text.
+  EXPECT_EQ(svg, pareto_svg(points, "sweep"));
+}
+
+TEST(ParetoSvg, EachPanelRingsItsOwnFront) {
+  const std::string svg = pareto_svg(sample_points(), "t");
+  // 3 on the total front (left panel) + 2 on the fidelity front (right panel).
+  EXPECT_EQ(count(svg, "class=\"ring\""), 5u);
+  EXPECT_EQ(count(svg, "<polyline class=\"front\""), 2u);
+  // The left staircase visits 3 points: 3 corners + 2 step corners = 5 vertices.
+  const size_t a = svg.find("<polyline class=\"front\"");
+  const size_t b = svg.find("/>", a);
+  const std::string left = svg.substr(a, b - a);
+  EXPECT_EQ(count(left, ","), 5u) << left;
+}
+
+TEST(ParetoSvg, EscapesXmlSpecialCharacters) {
+  std::vector<PlotPoint> points = {{"A<B & \"C\" 'd'>", "s&t", 3.0, 0.4, 0.6}};
+  const std::string svg = pareto_svg(points, "x < y & z");
+  EXPECT_NE(svg.find("A&lt;B &amp; &quot;C&quot; &apos;d&apos;&gt;"), std::string::npos);
+  EXPECT_NE(svg.find("s&amp;t"), std::string::npos);
+  EXPECT_NE(svg.find("x &lt; y &amp; z"), std::string::npos);
+  EXPECT_EQ(svg.find("A<B"), std::string::npos);
+  EXPECT_EQ(svg.find("& "), std::string::npos);  // every raw '&' became an entity
+}
+
+TEST(ParetoSvg, DecadeTicksSpanHalfAMillisecondToTwoSeconds) {
+  std::vector<PlotPoint> points = {{"a", "s", 0.5, 0.2, 0.3}, {"b", "s", 2000.0, 0.9, 0.8}};
+  const std::vector<std::string> ticks = texts_of_class(pareto_svg(points, "t"), "xtick");
+  // 0.5 ms lies in [0.1, 1), 2000 ms in [1000, 10000]: six decade ticks per panel.
+  const std::vector<std::string> one_panel = {"0.1", "1", "10", "100", "1000", "10000"};
+  ASSERT_EQ(ticks.size(), 12u);
+  for (size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(ticks[i], one_panel[i]);
+    EXPECT_EQ(ticks[6 + i], one_panel[i]);
+  }
+}
+
+TEST(ParetoSvg, RangeInsideOneDecadeStillGetsBothEnds) {
+  std::vector<PlotPoint> points = {{"a", "s", 2.0, 0.2, 0.3}, {"b", "s", 8.0, 0.9, 0.8}};
+  const std::vector<std::string> ticks = texts_of_class(pareto_svg(points, "t"), "xtick");
+  EXPECT_EQ(ticks, (std::vector<std::string>{"1", "10", "1", "10"}));
+}
+
+TEST(ParetoSvg, NonPositiveTimesAreClampedToTheFloor) {
+  std::vector<PlotPoint> points = {{"a", "s", 0.0, 0.2, 0.3}, {"b", "s", -5.0, 0.9, 0.8},
+                                   {"c", "s", 3.0, 0.5, 0.5}};
+  const std::string svg = pareto_svg(points, "t");
+  const std::vector<std::string> ticks = texts_of_class(svg, "xtick");
+  ASSERT_FALSE(ticks.empty());
+  EXPECT_EQ(ticks.front(), "0.001");  // kPlotMinTimeMs
+  EXPECT_EQ(count(svg, "class=\"pt\""), 6u);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+  EXPECT_EQ(svg.find("inf"), std::string::npos);
+}
+
+TEST(ParetoSvg, ScoreTicksHaveTwoOrThreeDecimalsAndAreDistinct) {
+  // A wide range, a narrow one and a constant one.
+  for (const std::vector<PlotPoint>& points :
+       {std::vector<PlotPoint>{{"a", "s", 1, 0.1, 0.2}, {"b", "s", 2, 0.95, 0.99}},
+        std::vector<PlotPoint>{{"a", "s", 1, 0.901, 0.5}, {"b", "s", 2, 0.912, 0.5}}}) {
+    const std::vector<std::string> ticks = texts_of_class(pareto_svg(points, "t"), "ytick");
+    ASSERT_GE(ticks.size(), 4u);
+    const std::regex fmt("-?[0-9]+\\.[0-9]{2,3}");
+    for (const std::string& t : ticks) EXPECT_TRUE(std::regex_match(t, fmt)) << t;
+    const std::set<std::string> unique(ticks.begin(), ticks.end());
+    // Each panel's ticks are distinct; the two panels may share values.
+    EXPECT_GE(unique.size() * 2, ticks.size());
+    EXPECT_EQ(std::count(ticks.begin(), ticks.end(), "-0.00"), 0);
+  }
+}
+
+TEST(ParetoSvg, NonFiniteValuesAreLeftOutOfTheirPanel) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<PlotPoint> points = {{"a", "s", 1, 0.5, std::nan("")}, {"b", "s", 2, 0.6, 0.7},
+                                   {"c", "s", inf, 0.9, 0.9}};
+  const std::string svg = pareto_svg(points, "t");
+  // Left panel: a, b; right panel: b only.
+  EXPECT_EQ(count(svg, "class=\"pt\""), 3u);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+}
+
+TEST(ParetoSvg, WriteReportsAnUnwritablePath) {
+  const std::string bad = "/no/such/folder/plot.svg";
+  try {
+    write_pareto_svg(bad, sample_points(), "t");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where, bad);
+    EXPECT_EQ(e.reason, "cannot write");
+  }
+  const std::string good = test::binary_path("pareto_plot_test.svg");
+  write_pareto_svg(good, sample_points(), "t");
+  std::ifstream f(good);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_EQ(ss.str(), pareto_svg(sample_points(), "t"));
+}
+
+}  // namespace
+}  // namespace shadowlab
