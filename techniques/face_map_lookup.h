@@ -31,9 +31,14 @@ inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
                               const FaceMapParams& p, float reach, const vec3& pos, const vec3& n) {
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
   const vec3 to_p0 = pos - light.position;
-  const float cos_t = std::clamp(glm::dot(n, -to_p0) / glm::length(to_p0), 1e-4f, 1.0f);
-  const vec3 to_p = normal_offset_point(pos, n, light.position, p.normal, plane_texel) - light.position;
-  const float dist = glm::length(to_p);
+  const float dist0 = glm::length(to_p0);
+  const float cos_t = std::clamp(glm::dot(n, -to_p0) / dist0, 1e-4f, 1.0f);
+  vec3 to_p = to_p0;
+  float dist = dist0;
+  if (p.normal > 0.0f) {
+    to_p = normal_offset_point(pos, n, light.position, p.normal, plane_texel) - light.position;
+    dist = glm::length(to_p);
+  }
   Receiver r;
   r.face = face_of(layout, to_p);
   const LightFace& f = layout.faces[size_t(r.face)];
@@ -42,8 +47,9 @@ inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
   const int ty = std::clamp(int(std::max(r.st.y, -1.0f)), 0, f.height - 1);
   r.texel = uint32_t(size_t(r.face) * f.texel_count() + size_t(ty) * size_t(f.width) + size_t(tx));
   // World size of a texel at the receiver, across the ray: distance × plane size × cos(angle
-  // to the face axis) (plane units shrink by cos towards the face's edge).
-  const float texel_world = dist * plane_texel * glm::dot(to_p, f.forward) / dist;
+  // to the face axis) = plane size × (p - L)·forward (plane units shrink by cos towards the
+  // face's edge).
+  const float texel_world = plane_texel * glm::dot(to_p, f.forward);
   const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 10.0f);
   const float bias = p.bias + p.slope * reach * texel_world * tan_t;
   r.depth = (dist - bias) / light.far;

@@ -20,8 +20,12 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
     std::vector<char>& f = flags[b / grain];
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
-      if (glm::length(g.position[i] - scene.light.position) <= 0.0f) continue;
-      f[size_t(make_receiver(layout, scene.light, p, 1.0f, g.position[i], g.geo_normal[i]).face)] = 1;
+      const vec3 to_p = g.position[i] - scene.light.position;
+      if (glm::length(to_p) <= 0.0f) continue;
+      // The lookup's face: of the receiver itself, or of its normal-offset point.
+      f[size_t(p.normal > 0.0f
+                   ? make_receiver(layout, scene.light, p, 1.0f, g.position[i], g.geo_normal[i]).face
+                   : face_of(layout, to_p))] = 1;
     }
   });
   std::vector<bool> needed(nf, false);
@@ -43,14 +47,16 @@ void build_face_map(const Scene& scene, const FaceMapParams& p, const std::vecto
     const LightFace& face = map.layout.faces[f];
     const float* d = map.dist.distance[f].data();
     if (p.filter == MapFilter::Exponential) {
-      filter_esm_log(d, face.width, face.height, p.blur, p.c, map.a[f]);
+      filter_esm_log(d, face.width, face.height, p.blur, p.c, map.a[f], map.scratch);
       continue;
     }
     if (p.moments_fp32)
       filter_moments_fp32(d, face.width, face.height, p.blur, p.slope_moment, map.a[f], map.b[f]);
     else
-      filter_moments_double(d, face.width, face.height, p.blur, p.slope_moment, map.a[f], map.b[f]);
-    if (p.maxdepth_eps > 0.0) filter_max(d, face.width, face.height, p.blur, map.max_depth[f]);
+      filter_moments_double(d, face.width, face.height, p.blur, p.slope_moment, map.a[f], map.b[f],
+                            map.scratch);
+    if (p.maxdepth_eps > 0.0)
+      filter_max(d, face.width, face.height, p.blur, map.max_depth[f], map.scratch);
   }
 }
 

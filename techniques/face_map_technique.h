@@ -8,6 +8,7 @@
 #include "core/scene.h"
 #include "techniques/face_map_params.h"
 #include "techniques/face_render.h"
+#include "techniques/moment_filter.h"
 #include "techniques/technique.h"
 
 namespace shadowlab {
@@ -19,6 +20,7 @@ struct FaceMap {
   FaceLayout layout;
   FaceDistances dist;
   std::vector<std::vector<float>> a, b, max_depth;
+  FilterScratch scratch;  // reused by every face and every rebuild
 };
 
 // Builds the map for the given needed faces.

@@ -20,11 +20,16 @@ struct FaceRadialShader {
   float* out;  // the target's own 1/w storage: each texel is read, then overwritten
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
+    // Plane coordinates of texel centres, as face_texel_plane() computes them.
+    const float du = (face->right_edge - face->left) / float(face->width);
+    const float dv = (face->top - face->bottom) / float(face->height);
     for (int y = y0; y < y1; ++y) {
       float* row = out + size_t(y) * size_t(depth.width);
+      const float v = face->top - (float(y) + 0.5f) * dv;
+      const float vv = 1.0f + v * v;
       for (int x = x0; x < x1; ++x) {
-        const vec2 uv = face_texel_plane(*face, float(x), float(y));
-        row[x] = std::sqrt(1.0f + uv.x * uv.x + uv.y * uv.y) * inv_far / row[x];
+        const float u = face->left + (float(x) + 0.5f) * du;
+        row[x] = std::sqrt(vv + u * u) * inv_far / row[x];
       }
     }
   }

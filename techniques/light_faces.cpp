@@ -81,30 +81,9 @@ FaceLayout tetra_layout(int res, int guard) {
   return L;
 }
 
-int face_of(const FaceLayout& layout, const vec3& dir) {
-  if (layout.kind == FaceLayoutKind::Cube) return cube_face_of(dir);
-  int best = 0;
-  float best_dot = glm::dot(dir, kTetraNormals[0]);
-  for (int i = 1; i < 4; ++i) {
-    const float d = glm::dot(dir, kTetraNormals[i]);
-    if (d > best_dot) {
-      best_dot = d;
-      best = i;
-    }
-  }
-  return best;
-}
-
-vec2 face_texel_coords(const LightFace& f, const vec3& dir) {
-  const float inv = 1.0f / glm::dot(dir, f.forward);
-  const float u = glm::dot(dir, f.right) * inv, v = glm::dot(dir, f.up) * inv;
-  return vec2((u - f.left) / (f.right_edge - f.left) * float(f.width),
-              (f.top - v) / (f.top - f.bottom) * float(f.height));
-}
-
 vec2 face_texel_plane(const LightFace& f, float x, float y) {
-  return vec2(f.left + (x + 0.5f) / float(f.width) * (f.right_edge - f.left),
-              f.top - (y + 0.5f) / float(f.height) * (f.top - f.bottom));
+  return vec2(f.left + (x + 0.5f) * ((f.right_edge - f.left) / float(f.width)),
+              f.top - (y + 0.5f) * ((f.top - f.bottom) / float(f.height)));
 }
 
 vec3 face_texel_direction(const LightFace& f, float sx, float sy) {

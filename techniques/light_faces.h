@@ -25,10 +25,14 @@
 
 #include "core/math.h"
 #include "core/scene.h"
+#include "techniques/cube_faces.h"
 
 namespace shadowlab {
 
 enum class FaceLayoutKind { Cube, Tetrahedron };
+
+// Light-space normals of the four tetrahedral faces (unit vectors).
+extern const vec3 kTetraNormals[4];
 
 struct LightFace {
   vec3 forward{0.0f}, up{0.0f}, right{0.0f};  // world-space axes (view -z = forward)
@@ -52,14 +56,29 @@ FaceLayout cube_layout(int res, int guard);
 FaceLayout tetra_layout(int res, int guard);
 // Edge S of the tetrahedral texture for cube edge n: the even S with S² closest to 6·n².
 int tetra_atlas_size(int n);
-// Light-space normals of the four tetrahedral faces (unit vectors).
-extern const vec3 kTetraNormals[4];
 
-// Face owning direction `dir` (non-zero) from the light.
-int face_of(const FaceLayout& layout, const vec3& dir);
+// Face owning direction `dir` (non-zero) from the light. (Inline: once per lookup.)
+inline int face_of(const FaceLayout& layout, const vec3& dir) {
+  if (layout.kind == FaceLayoutKind::Cube) return cube_face_of(dir);
+  int best = 0;
+  float best_dot = glm::dot(dir, kTetraNormals[0]);
+  for (int i = 1; i < 4; ++i) {
+    const float d = glm::dot(dir, kTetraNormals[i]);
+    if (d > best_dot) {
+      best_dot = d;
+      best = i;
+    }
+  }
+  return best;
+}
 // Continuous texel coordinates (x right, y down, centres at +0.5) of `dir` in `face`. Valid
 // for directions in front of the face (dir·forward > 0).
-vec2 face_texel_coords(const LightFace& face, const vec3& dir);
+inline vec2 face_texel_coords(const LightFace& f, const vec3& dir) {
+  const float inv = 1.0f / glm::dot(dir, f.forward);
+  const float u = glm::dot(dir, f.right) * inv, v = glm::dot(dir, f.up) * inv;
+  return vec2((u - f.left) / (f.right_edge - f.left) * float(f.width),
+              (f.top - v) / (f.top - f.bottom) * float(f.height));
+}
 // Plane coordinates (u, v) of texel centre (x + 0.5, y + 0.5).
 vec2 face_texel_plane(const LightFace& face, float x, float y);
 // World-space unit direction through continuous texel coordinates (sx, sy).

@@ -18,13 +18,14 @@ inline double min_diff(double prev, double here, double next) {
   return std::fabs(a) <= std::fabs(b) ? a : b;
 }
 
-// Separable box sum of `planes` input planes (T = double or float), clamp-to-edge, returning
-// the mean over the k × k footprint. Horizontal pass into tmp, then vertical.
+// Separable box filter of N planes (T = double or float), clamp-to-edge, giving the mean over
+// the k × k footprint: horizontal sums into tmp, then vertical sums into out. Every output is
+// the same fixed-order sum of its window, whatever the chunking.
 template <class T, int N>
-void box_mean(const std::vector<T> (&in)[N], int w, int h, int k, std::vector<T> (&out)[N]) {
+void box_mean(const std::vector<T>* in, int w, int h, int k, std::vector<T>* tmp,
+              std::vector<T>* out) {
   const int r = k / 2;
   const size_t n = size_t(w) * size_t(h);
-  std::vector<T> tmp[N];
   for (int c = 0; c < N; ++c) {
     tmp[c].resize(n);
     out[c].resize(n);
@@ -35,24 +36,33 @@ void box_mean(const std::vector<T> (&in)[N], int w, int h, int k, std::vector<T>
       for (int c = 0; c < N; ++c) {
         const T* row = in[c].data() + y * size_t(w);
         T* dst = tmp[c].data() + y * size_t(w);
-        for (int x = 0; x < w; ++x) {
+        // Borders clamp; the interior needs no index checks.
+        auto clamped = [&](int x) {
           T s = 0;
           for (int i = -r; i <= r; ++i) s += row[std::clamp(x + i, 0, w - 1)];
+          return s;
+        };
+        const int lo = std::min(r, w), hi = std::max(lo, w - r);
+        for (int x = 0; x < lo; ++x) dst[x] = clamped(x);
+        for (int x = lo; x < hi; ++x) {
+          T s = 0;
+          for (int i = -r; i <= r; ++i) s += row[x + i];
           dst[x] = s;
         }
+        for (int x = hi; x < w; ++x) dst[x] = clamped(x);
       }
   });
   parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
-    std::vector<T> acc(static_cast<size_t>(w));
     for (size_t y = b; y < e; ++y)
       for (int c = 0; c < N; ++c) {
-        std::fill(acc.begin(), acc.end(), T(0));
-        for (int j = -r; j <= r; ++j) {
-          const T* row = tmp[c].data() + size_t(std::clamp(int(y) + j, 0, h - 1)) * size_t(w);
-          for (int x = 0; x < w; ++x) acc[size_t(x)] += row[x];
-        }
         T* dst = out[c].data() + y * size_t(w);
-        for (int x = 0; x < w; ++x) dst[x] = acc[size_t(x)] * inv;
+        const T* first = tmp[c].data() + size_t(std::clamp(int(y) - r, 0, h - 1)) * size_t(w);
+        for (int x = 0; x < w; ++x) dst[x] = first[x];
+        for (int j = -r + 1; j <= r; ++j) {
+          const T* row = tmp[c].data() + size_t(std::clamp(int(y) + j, 0, h - 1)) * size_t(w);
+          for (int x = 0; x < w; ++x) dst[x] += row[x];
+        }
+        for (int x = 0; x < w; ++x) dst[x] *= inv;
       }
   });
 }
@@ -88,10 +98,12 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
 }  // namespace
 
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
-                           std::vector<float>& mean, std::vector<float>& variance) {
-  std::vector<double> in[2], out[2];
+                           std::vector<float>& mean, std::vector<float>& variance,
+                           FilterScratch& scratch) {
+  std::vector<double>* in = scratch.in;
+  std::vector<double>* out = scratch.out;
   raw_moments<double>(dist, w, h, slope_term, in[0], in[1]);
-  box_mean<double, 2>(in, w, h, k, out);
+  box_mean<double, 2>(in, w, h, k, scratch.tmp, out);
   const size_t n = size_t(w) * size_t(h);
   mean.resize(n);
   variance.resize(n);
@@ -105,17 +117,19 @@ void filter_moments_double(const float* dist, int w, int h, int k, bool slope_te
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
                          std::vector<float>& m1, std::vector<float>& m2) {
-  std::vector<float> in[2], out[2];
+  std::vector<float> in[2], tmp[2], out[2];
   raw_moments<float>(dist, w, h, slope_term, in[0], in[1]);
-  box_mean<float, 2>(in, w, h, k, out);
+  box_mean<float, 2>(in, w, h, k, tmp, out);
   m1.swap(out[0]);
   m2.swap(out[1]);
 }
 
-void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out) {
+void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
+                FilterScratch& scratch) {
   const int r = k / 2;
   const size_t n = size_t(w) * size_t(h);
-  std::vector<float> tmp(n);
+  std::vector<float>& tmp = scratch.tmp_f;
+  tmp.resize(n);
   out.resize(n);
   parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
     for (size_t y = b; y < e; ++y)
@@ -137,7 +151,8 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out)
   });
 }
 
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out) {
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
+                    FilterScratch& scratch) {
   const size_t n = size_t(w) * size_t(h);
   // The image's smallest distance, a fixed-order reduction over per-row minima.
   std::vector<float> row_min(static_cast<size_t>(h));
@@ -150,12 +165,13 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
   });
   double d_min = 1.0;
   for (float m : row_min) d_min = std::min(d_min, double(m));
-  std::vector<double> in[1], filtered[1];
+  std::vector<double>* in = scratch.in;
+  std::vector<double>* filtered = scratch.out;
   in[0].resize(n);
   parallel_for_chunks(n, 1 << 14, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) in[0][i] = std::exp(c * (double(finite_dist(dist[i])) - d_min));
   });
-  box_mean<double, 1>(in, w, h, k, filtered);
+  box_mean<double, 1>(in, w, h, k, scratch.tmp, filtered);
   out.resize(n);
   parallel_for_chunks(n, 1 << 14, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) out[i] = float(c * d_min + std::log(filtered[0][i]));

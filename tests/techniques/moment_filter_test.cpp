@@ -34,7 +34,8 @@ TEST(MomentFilter, VarianceNearFarPlaneSurvivesInDoubleNotInFp32) {
   std::vector<float> d(size_t(w * h));
   for (float& v : d) v = 0.999f + u(rng);
   std::vector<float> mean, var, m1, m2;
-  filter_moments_double(d.data(), w, h, k, false, mean, var);
+  FilterScratch scratch;
+  filter_moments_double(d.data(), w, h, k, false, mean, var, scratch);
   filter_moments_fp32(d.data(), w, h, k, false, m1, m2);
   double worst_double = 0.0, worst_fp32 = 0.0;
   for (int y = 0; y < h; ++y)
@@ -65,7 +66,8 @@ TEST(MomentFilter, EsmLogSpaceFilterIsFiniteAndExactAtCFiveHundred) {
   d[5] = std::numeric_limits<float>::infinity();  // nothing seen: counts as 1
   EXPECT_TRUE(std::isinf(std::exp(float(c) * 0.5f)));  // the naive fp32 form overflows
   std::vector<float> out;
-  filter_esm_log(d.data(), w, h, k, c, out);
+  FilterScratch scratch;
+  filter_esm_log(d.data(), w, h, k, c, out, scratch);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       long double s = 0.0L;
@@ -90,7 +92,8 @@ TEST(MomentFilter, MaxFilterIsTheWindowMaximum) {
   std::vector<float> d(size_t(w * h));
   for (float& v : d) v = u(rng);
   std::vector<float> out;
-  filter_max(d.data(), w, h, k, out);
+  FilterScratch scratch;
+  filter_max(d.data(), w, h, k, out, scratch);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float m = 0.0f;
