@@ -34,7 +34,8 @@ struct FaceMapParams {
   bool moments_fp32 = false;   // VSM: fp32 moments (d, d²) filtered in float — the naive form,
                                // kept to measure its cancellation; default: double filter,
                                // stored as (mean, variance)
-  double c = 80.0;             // ESM exponent on normalised distance (|p - L| / far)
+  double c = 200.0;            // ESM exponent on normalised distance (|p - L| / far); the
+                               // log-space filter allows any c <= 700 (README: why 200)
 };
 
 // True for the names this family implements.

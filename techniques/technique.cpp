@@ -25,7 +25,7 @@ const Entry kTechniques[] = {
     {"cvsm", "cube variance shadow map: cvsm:res=512,blur=3,min_variance=1e-6,bleed=0,"
              "maxdepth_eps=0,slope_moment=0,fp32=0,bias=0,slope=0,normal=0", run_face_map_technique},
     {"tvsm", "tetrahedral variance shadow map (keys as cvsm)", run_face_map_technique},
-    {"cesm", "cube exponential shadow map: cesm:res=512,blur=3,c=80,bias=0,slope=0,normal=0",
+    {"cesm", "cube exponential shadow map: cesm:res=512,blur=3,c=200,bias=0,slope=0,normal=0",
      run_face_map_technique},
     {"tesm", "tetrahedral exponential shadow map (keys as cesm)", run_face_map_technique},
 };
