@@ -64,7 +64,13 @@ struct Bilinear {
 };
 inline Bilinear bilinear_taps(vec2 st, int w, int h) {
   const float gx = st.x - 0.5f, gy = st.y - 0.5f;
-  const float flx = std::floor(gx), fly = std::floor(gy);
+  // floor without libm (|g| is far below 2^31 here): truncate, step down for negative
+  // non-integers. std::floor is a long sequence on the SSE2 baseline.
+  auto floor_f = [](float g) {
+    const float t = float(int(g));
+    return t > g ? t - 1.0f : t;
+  };
+  const float flx = floor_f(gx), fly = floor_f(gy);
   Bilinear b;
   b.fx = gx - flx;
   b.fy = gy - fly;

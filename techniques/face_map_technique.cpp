@@ -114,16 +114,16 @@ void lookup_face_map(const Scene& scene, const GBuffer& g, const FaceMapParams& 
       const LightFace& f = L.faces[size_t(r.face)];
       const float* z = map.a[size_t(r.face)].data();
       const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
-      const double ct = c * double(r.depth);
+      const float ct = float(c) * r.depth;
       // Σ w·exp(c·z_occ − c·t): the bilinear filter of exp(c·z) times exp(−c·t). Each exponent
-      // is capped at 80 (e^80 ≈ 5.5e34): any such tap already makes the sum >= 1 unless its
-      // weight is below e^-80, and the result is clamped to 1 anyway.
+      // is capped at 80 (e^80 ≈ 5.5e34, so four terms stay finite in float): any such tap already
+      // makes the sum >= 1 unless its weight is below e^-80, and the result is clamped to 1.
       auto term = [&](int x, int y) {
-        return std::exp(std::min(double(z[size_t(y) * size_t(f.width) + size_t(x)]) - ct, 80.0));
+        return std::exp(std::min(z[size_t(y) * size_t(f.width) + size_t(x)] - ct, 80.0f));
       };
-      const double v = (1.0 - bl.fy) * ((1.0 - bl.fx) * term(bl.x0, bl.y0) + bl.fx * term(bl.x1, bl.y0)) +
-                       bl.fy * ((1.0 - bl.fx) * term(bl.x0, bl.y1) + bl.fx * term(bl.x1, bl.y1));
-      return float(std::min(v, 1.0));
+      const float v = (1.0f - bl.fy) * ((1.0f - bl.fx) * term(bl.x0, bl.y0) + bl.fx * term(bl.x1, bl.y0)) +
+                      bl.fy * ((1.0f - bl.fx) * term(bl.x0, bl.y1) + bl.fx * term(bl.x1, bl.y1));
+      return std::min(v, 1.0f);
     });
     return;
   }
