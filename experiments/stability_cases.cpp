@@ -42,7 +42,7 @@ enum class Check { Mismatch, LitLoss, ShadowLeak, NonFinite };
 
 StabilityRow measure(const Prepared& p, const std::string& case_name, const std::string& setting,
                      const std::string& spec, Check check, double bound,
-                     const std::string& expectation) {
+                     const std::string& expectation, double leak_bound = 1.0) {
   RunOptions opt;
   opt.want_texels = false;
   const ShadowResult r = run_technique(parse_technique_spec(spec, "stability"), p.scene, p.g, opt);
@@ -77,7 +77,8 @@ StabilityRow measure(const Prepared& p, const std::string& case_name, const std:
     case Check::ShadowLeak: row.checked = row.shadow_leak; break;
     case Check::NonFinite: row.checked = 0.0; break;
   }
-  row.pass = row.nonfinite == 0 && row.checked <= bound;
+  row.leak_bound = leak_bound;
+  row.pass = row.nonfinite == 0 && row.checked <= bound && row.shadow_leak <= leak_bound;
   return row;
 }
 
@@ -105,7 +106,9 @@ std::vector<StabilityRow> run_stability_cases() {
         const bool sharp = c >= 80.0;
         rows.push_back(measure(def, "esm_exponent", "far=20 c=" + fmt("%g", c), spec,
                                sharp ? Check::Mismatch : Check::NonFinite, sharp ? 0.05 : 0.0,
-                               sharp ? "finite; mismatch <= 5%" : "finite (leaks expected at small c)"));
+                               sharp ? "finite; mismatch <= 5%; leak <= 0.1"
+                                     : "finite (leaks expected at small c)",
+                               sharp ? 0.1 : 1.0));
       }
     Scene s = sized(make_builtin_scene("default"));
     s.light.far = 1e4f;
@@ -119,7 +122,10 @@ std::vector<StabilityRow> run_stability_cases() {
   // 2. VSM over light ranges: near/far from 1e-3 / 20 to 1e-3 / 1e4, and a tight far (1.01 ×
   //    the farthest receiver), where stored depths approach 1 and fp32 E[d²] − E[d]² cancels.
   //    The default (double filter, centred storage) must keep acne (lit pixels lost) under 1%
-  //    in every range; the fp32 form is measured alongside.
+  //    and light bleeding (mean visibility over the reference's shadowed pixels) under 0.1 in
+  //    every range: Chebyshev's bound leaks only where the occluder-receiver gap is small
+  //    against the filtered spread, i.e. along the shadow edges. The fp32 form is measured
+  //    alongside.
   {
     float farthest = 0.0f;
     {
@@ -138,7 +144,7 @@ std::vector<StabilityRow> run_stability_cases() {
       const Prepared p = prepare(s);
       for (const char* t : {"cvsm", "tvsm"}) {
         rows.push_back(measure(p, "vsm_range", rg.name, std::string(t) + ":res=512", Check::LitLoss,
-                               0.01, "finite; lit pixels lost <= 1%"));
+                               0.01, "finite; lit lost <= 1%; bleeding: leak <= 0.1", 0.1));
         rows.push_back(measure(p, "vsm_range", rg.name, std::string(t) + ":res=512,fp32=1",
                                Check::NonFinite, 0.0, "finite (fp32 moments: measured, no bound)"));
         rows.push_back(measure(p, "vsm_range", rg.name, std::string(t) + ":res=512,min_variance=0",

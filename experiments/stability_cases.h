@@ -19,6 +19,7 @@ struct StabilityRow {
   double shadow_leak = 0.0;  // mean mask over the reference's shadowed covered pixels (bleeding)
   double bound = 0.0;        // the limit `checked` is compared with
   double checked = 0.0;      // the value the bound applies to (one of the above)
+  double leak_bound = 1.0;   // light-bleeding bound on shadow_leak (1 = none)
   bool pass = false;
 };
 
