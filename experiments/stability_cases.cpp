@@ -90,6 +90,43 @@ std::string fmt(const char* f, double v) {
 
 }  // namespace
 
+BoxRoom make_box_room() {
+  BoxRoom b;
+  Scene& s = b.scene;
+  s.name = "box";
+  s.materials.push_back(Material{});
+  Mesh m;
+  add_box(m, glm::scale(mat4(1.0f), vec3(4.0f)));
+  s.meshes.push_back(m);
+  s.light.position = vec3(0.3f, 0.2f, 0.1f);
+  s.light.near = 0.05f;
+  s.light.far = 10.0f;
+  const int n = 90000;
+  b.g.resize(n, 1);
+  const float golden = 3.14159265f * (3.0f - std::sqrt(5.0f));
+  for (int i = 0; i < n; ++i) {
+    const float y = 1.0f - 2.0f * (float(i) + 0.5f) / float(n), r = std::sqrt(1.0f - y * y);
+    const vec3 d(r * std::cos(golden * float(i)), y, r * std::sin(golden * float(i)));
+    float t = 1e30f;
+    int axis = 0;
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] == 0.0f) continue;
+      const float ta = ((d[a] > 0.0f ? 2.0f : -2.0f) - s.light.position[a]) / d[a];
+      if (ta < t) t = ta, axis = a;
+    }
+    const vec3 q = s.light.position + t * d;
+    int near_edges = 0;
+    for (int a = 0; a < 3; ++a) near_edges += std::fabs(q[a]) > 1.6f;
+    if (near_edges >= 2) continue;
+    vec3 normal(0.0f);
+    normal[axis] = d[axis] > 0.0f ? -1.0f : 1.0f;
+    b.g.position[size_t(i)] = q;
+    b.g.normal[size_t(i)] = b.g.geo_normal[size_t(i)] = normal;
+    b.g.covered[size_t(i)] = 1;
+  }
+  return b;
+}
+
 std::vector<StabilityRow> run_stability_cases() {
   std::vector<StabilityRow> rows;
   const char* const filtered[] = {"cvsm", "tvsm", "cesm", "tesm"};
@@ -217,39 +254,10 @@ std::vector<StabilityRow> run_stability_cases() {
   //    of a res-256 map), leaving out points within 0.4 m of the box's own concave edges (where
   //    filtered maps darken legitimately). Everything is lit: no lit pixel may be lost.
   {
+    BoxRoom room = make_box_room();
     Prepared p;
-    Scene& s = p.scene;
-    s.name = "box";
-    s.materials.push_back(Material{});
-    Mesh m;
-    add_box(m, glm::scale(mat4(1.0f), vec3(4.0f)));
-    s.meshes.push_back(m);
-    s.light.position = vec3(0.3f, 0.2f, 0.1f);
-    s.light.near = 0.05f;
-    s.light.far = 10.0f;
-    const int n = 90000;
-    p.g.resize(n, 1);
-    const float golden = 3.14159265f * (3.0f - std::sqrt(5.0f));
-    for (int i = 0; i < n; ++i) {
-      const float y = 1.0f - 2.0f * (float(i) + 0.5f) / float(n), r = std::sqrt(1.0f - y * y);
-      const vec3 d(r * std::cos(golden * float(i)), y, r * std::sin(golden * float(i)));
-      float t = 1e30f;
-      int axis = 0;
-      for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) continue;
-        const float ta = ((d[a] > 0.0f ? 2.0f : -2.0f) - s.light.position[a]) / d[a];
-        if (ta < t) t = ta, axis = a;
-      }
-      const vec3 q = s.light.position + t * d;
-      int near_edges = 0;
-      for (int a = 0; a < 3; ++a) near_edges += std::fabs(q[a]) > 1.6f;
-      if (near_edges >= 2) continue;
-      vec3 normal(0.0f);
-      normal[axis] = d[axis] > 0.0f ? -1.0f : 1.0f;
-      p.g.position[size_t(i)] = q;
-      p.g.normal[size_t(i)] = p.g.geo_normal[size_t(i)] = normal;
-      p.g.covered[size_t(i)] = 1;
-    }
+    p.scene = std::move(room.scene);
+    p.g = std::move(room.g);
     RunOptions opt;
     p.reference = run_technique(parse_technique_spec("rt:hard=1", "stability"), p.scene, p.g, opt).mask;
     for (const char* spec : {"csm:res=256,pcf=5", "tsm:res=256,pcf=5", "cvsm:res=256,blur=7",

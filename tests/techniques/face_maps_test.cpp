@@ -1,10 +1,10 @@
 // The face-map techniques (tsm, cvsm, tvsm, cesm, tesm): analytic scenes, seams at face
-// boundaries, agreement with Embree, texel indices, and bad parameters.
+// boundaries (in tests/experiments/face_seams_test.cpp), agreement with Embree, texel indices,
+// and bad parameters.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/mesh_builders.h"
 #include "techniques/face_map_technique.h"
 #include "test_scenes.h"
 
@@ -31,84 +31,6 @@ TEST(FaceMaps, UnoccludedPlaneIsLit) {
     for (size_t i = 0; i < g.pixel_count(); ++i)
       ASSERT_GE(r.mask.data[i], 0.99f) << spec << " pixel " << i;
   }
-}
-
-// A closed box around an off-centre light: every wall point is lit. Receivers are placed on
-// the walls in a dense Fibonacci set of directions (0.7° apart, about a texel of the res-256 maps),
-// so every cube and tetrahedron face boundary and corner is crossed many times. Points within
-// 0.4 m of the box's own (concave) edges are left out: there a filtered map legitimately
-// darkens, because the adjacent wall is nearer than the receiver's plane (a blur of 7 texels
-// plus the bilinear tap spans ±4.5 texels: ±4.5° on the tetrahedral axis at res 256, ≤ 0.3 m
-// at the walls' ≤ 3.7 m).
-struct BoxRoom {
-  Scene scene;
-  GBuffer g;
-};
-
-BoxRoom box_room() {
-  BoxRoom b;
-  Scene& s = b.scene;
-  s.name = "box";
-  s.materials.push_back(Material{});
-  Mesh m;
-  add_box(m, glm::scale(mat4(1.0f), vec3(4.0f)));
-  s.meshes.push_back(m);
-  s.light.position = vec3(0.3f, 0.2f, 0.1f);
-  s.light.near = 0.05f;
-  s.light.far = 10.0f;
-  const int n = 90000;
-  b.g.resize(n, 1);
-  const float golden = 3.14159265f * (3.0f - std::sqrt(5.0f));
-  for (int i = 0; i < n; ++i) {
-    const float y = 1.0f - 2.0f * (float(i) + 0.5f) / float(n), r = std::sqrt(1.0f - y * y);
-    const vec3 d(r * std::cos(golden * float(i)), y, r * std::sin(golden * float(i)));
-    float t = 1e30f;
-    int axis = 0;
-    for (int a = 0; a < 3; ++a) {
-      if (d[a] == 0.0f) continue;
-      const float ta = ((d[a] > 0.0f ? 2.0f : -2.0f) - s.light.position[a]) / d[a];
-      if (ta < t) t = ta, axis = a;
-    }
-    const vec3 p = s.light.position + t * d;
-    int near_edges = 0;
-    for (int a = 0; a < 3; ++a) near_edges += std::fabs(p[a]) > 1.6f;
-    if (near_edges >= 2) continue;
-    vec3 normal(0.0f);
-    normal[axis] = d[axis] > 0.0f ? -1.0f : 1.0f;
-    b.g.position[size_t(i)] = p;
-    b.g.normal[size_t(i)] = b.g.geo_normal[size_t(i)] = normal;
-    b.g.covered[size_t(i)] = 1;
-  }
-  return b;
-}
-
-TEST(FaceMaps, NoSeamsAcrossFaceBoundariesAndCorners) {
-  const BoxRoom room = box_room();
-  for (const char* spec : {"tsm:res=256", "tsm:res=256,pcf=5", "cvsm:res=256,blur=7",
-                           "tvsm:res=256,blur=7", "cesm:res=256,blur=7", "tesm:res=256,blur=7",
-                           "csm:res=256,pcf=5"}) {
-    const ShadowResult r = test::run(spec, room.scene, room.g);
-    float worst = 1.0f;
-    for (size_t i = 0; i < room.g.pixel_count(); ++i)
-      if (room.g.covered[i]) worst = std::min(worst, r.mask.data[i]);
-    EXPECT_GE(worst, 0.99f) << spec;
-  }
-}
-
-// The seam test can fail: the same blurred VSM without its guard band (the blur clamps at each
-// face's edge and meets the neighbouring face's different depths) darkens boundary texels.
-TEST(FaceMaps, WithoutGuardBandTheBlurLeavesSeams) {
-  const BoxRoom room = box_room();
-  FaceMapParams p = parse_face_map_params(parse_technique_spec("cvsm:res=256,blur=7", "t"), "t");
-  FaceMap map;
-  map.layout = cube_layout(p.res, 0);
-  build_face_map(room.scene, p, std::vector<bool>(6, true), map);
-  ImageF mask;
-  lookup_face_map(room.scene, room.g, p, map, mask, nullptr);
-  float worst = 1.0f;
-  for (size_t i = 0; i < room.g.pixel_count(); ++i)
-    if (room.g.covered[i]) worst = std::min(worst, mask.data[i]);
-  EXPECT_LT(worst, 0.9f);
 }
 
 // Fine maps agree with one Embree ray per pixel almost everywhere (a 1024 map gives several
