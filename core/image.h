@@ -41,6 +41,16 @@ struct Image {
 using ImageF = Image<float>;
 using ImageU32 = Image<uint32_t>;
 
+// Sizes img to w × h with one channel, keeping existing storage and values (for writers that
+// set every pixel: no clearing, and no fresh pages in timing loops).
+template <class T>
+void shape_single_channel(Image<T>& img, int w, int h) {
+  img.width = w;
+  img.height = h;
+  img.channels = 1;
+  img.data.resize(size_t(w) * size_t(h));
+}
+
 // Texel index meaning "no shadow-map texel here" (no geometry, or facing away from the light).
 constexpr uint32_t kNoTexel = 0xFFFFFFFFu;
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 #include "core/mesh_builders.h"
 #include "core/scene_library.h"
@@ -235,11 +234,9 @@ std::vector<StabilityRow> run_stability_cases() {
     s.camera.target = vec3(3.0f, 0.0f, 0.0f);
     s.camera.up = vec3(0.0f, 0.0f, -1.0f);
     s.camera.fov_y_deg = 40.0f;
-    add_cylinder([&]() -> Mesh& {
-      s.meshes.push_back(Mesh{});
-      s.meshes.back().name = "pole";
-      return s.meshes.back();
-    }(), vec3(1.5f, 0.0f, 0.0f), 0.003f, 1.95f, 12);
+    s.meshes.push_back(Mesh{});
+    s.meshes.back().name = "pole";
+    add_cylinder(s.meshes.back(), vec3(1.5f, 0.0f, 0.0f), 0.003f, 1.95f, 12);
     const Prepared p = prepare(s);
     for (const char* t : {"csm", "tsm"})
       rows.push_back(measure(p, "thin_occluder", "1 texel", std::string(t) + ":res=512",

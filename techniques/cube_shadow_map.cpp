@@ -200,16 +200,9 @@ void render_cube_map(const Scene& scene, const std::array<bool, kCubeFaces>& nee
 void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& map,
                      const CubeShadowParams& p, ImageF& mask, ImageU32* texels) {
   const PointLight& light = scene.light;
-  // Every pixel is written below, so existing storage is reused as it is (no clearing, and no
-  // page faults in timing loops).
-  auto shape = [&](auto& img) {
-    img.width = g.width;
-    img.height = g.height;
-    img.channels = 1;
-    img.data.resize(g.pixel_count());
-  };
-  shape(mask);
-  if (texels) shape(*texels);
+  // Every pixel is written below.
+  shape_single_channel(mask, g.width, g.height);
+  if (texels) shape_single_channel(*texels, g.width, g.height);
   const int res = map.res;
   const float inv_far = 1.0f / light.far;
   // World size of one texel at unit distance along the face axis (face spans [-1, 1]).
@@ -237,16 +230,18 @@ void lookup_cube_map(const Scene& scene, const GBuffer& g, const CubeShadowMap& 
         mask.data[i] = 0.0f;
         continue;
       }
+      // faces_light() is false at the light itself (N·0 = 0), so the distance is > 0 here.
       const vec3 to_p0 = g.position[i] - light.position;
-      if (glm::length(to_p0) <= 0.0f) {  // a receiver at the light itself is lit
-        mask.data[i] = 1.0f;
-        continue;
-      }
+      const float dist0 = glm::length(to_p0);
       // The slope term keeps the receiver's own angle; the lookup uses the offset point.
-      const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p0) / glm::length(to_p0), 1e-4f, 1.0f);
-      const vec3 to_p = normal_offset_point(g.position[i], g.geo_normal[i], light.position,
-                                            p.normal, texel_angle) - light.position;
-      const float dist = glm::length(to_p);
+      const float cos_t = std::clamp(glm::dot(g.geo_normal[i], -to_p0) / dist0, 1e-4f, 1.0f);
+      vec3 to_p = to_p0;
+      float dist = dist0;
+      if (p.normal > 0.0f) {
+        to_p = normal_offset_point(g.position[i], g.geo_normal[i], light.position, p.normal,
+                                   texel_angle) - light.position;
+        dist = glm::length(to_p);
+      }
       const int face = cube_face_of(to_p);
       const vec2 st = face_texel_coords(face, to_p, res);
       if (texels)

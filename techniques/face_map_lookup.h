@@ -87,19 +87,14 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
                                const FaceMapParams& p);
 
 // The pixel loop: visibility(receiver) for every covered, light-facing pixel; texel indices
-// when `texels` is given. Receivers at the light itself are lit.
+// when `texels` is given. (faces_light() is false for a receiver at the light itself, so every
+// receiver reaching make_receiver() has a distance > 0.)
 template <class Visibility>
 void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
                   const FaceMapParams& p, float reach, ImageF& mask, ImageU32* texels,
                   const Visibility& visibility) {
-  auto shape = [&](auto& img) {
-    img.width = g.width;
-    img.height = g.height;
-    img.channels = 1;
-    img.data.resize(g.pixel_count());
-  };
-  shape(mask);
-  if (texels) shape(*texels);
+  shape_single_channel(mask, g.width, g.height);
+  if (texels) shape_single_channel(*texels, g.width, g.height);
   const PointLight& light = scene.light;
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
@@ -110,10 +105,6 @@ void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout
       }
       if (!faces_light(g, i, light.position)) {
         mask.data[i] = 0.0f;
-        continue;
-      }
-      if (glm::length(g.position[i] - light.position) <= 0.0f) {
-        mask.data[i] = 1.0f;
         continue;
       }
       const Receiver r = make_receiver(layout, light, p, reach, g.position[i], g.geo_normal[i]);

@@ -38,8 +38,7 @@ FaceMapParams parse_face_map_params(const TechniqueSpec& spec, const char* flag)
     p.bleed = r.get_double("bleed", p.bleed, 0.0, 0.99);
     p.maxdepth_eps = r.get_double("maxdepth_eps", p.maxdepth_eps, 0.0, 1e3);
     p.slope_moment = r.get_bool("slope_moment", p.slope_moment);
-    const int fp32 = r.get_int("fp32", 0, 0, 1);
-    p.moments_fp32 = fp32 != 0;
+    p.moments_fp32 = r.get_bool("fp32", p.moments_fp32);
   }
   if (p.filter == MapFilter::Exponential)
     // exp(c·Δ) with Δ <= 1 must stay below DBL_MAX (ln ≈ 709.8) in the filter; see moment_filter.h.

@@ -21,7 +21,6 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
       const vec3 to_p = g.position[i] - scene.light.position;
-      if (glm::length(to_p) <= 0.0f) continue;
       // The lookup's face: of the receiver itself, or of its normal-offset point.
       f[size_t(p.normal > 0.0f
                    ? make_receiver(layout, scene.light, p, 1.0f, g.position[i], g.geo_normal[i]).face

@@ -20,7 +20,7 @@ struct FaceRadialShader {
   float* out;  // the target's own 1/w storage: each texel is read, then overwritten
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
-    // Plane coordinates of texel centres, as face_texel_plane() computes them.
+    // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
     const float du = (face->right_edge - face->left) / float(face->width);
     const float dv = (face->top - face->bottom) / float(face->height);
     for (int y = y0; y < y1; ++y) {

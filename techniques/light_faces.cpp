@@ -1,7 +1,7 @@
 #include "techniques/light_faces.h"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "techniques/cube_faces.h"
 
@@ -61,9 +61,10 @@ FaceLayout tetra_layout(int res, int guard) {
   FaceLayout L;
   L.kind = FaceLayoutKind::Tetrahedron;
   L.res = res;
-  L.guard = guard;
   L.atlas = tetra_atlas_size(res);
   const int side = L.atlas / 2;
+  // A face too small for its guard keeps at least one owned texel.
+  L.guard = std::min(guard, (side - 1) / 2);
   const float s2 = std::sqrt(2.0f), s6 = std::sqrt(6.0f);
   L.faces.resize(4);
   for (int i = 0; i < 4; ++i) {
@@ -74,16 +75,10 @@ FaceLayout tetra_layout(int res, int guard) {
     const vec3 corner = -kTetraNormals[j];
     f.up = glm::normalize(corner - glm::dot(corner, f.forward) * f.forward);
     f.right = glm::cross(f.forward, f.up);
-    // Owned-triangle box; a face too small for its guard keeps one owned texel.
-    const int g = std::min(guard, (side - 1) / 2);
-    set_extent(f, -s6, s6, -s2, 2.0f * s2, side, side, g);
+    // The owned triangle's tight box, grown by the guard.
+    set_extent(f, -s6, s6, -s2, 2.0f * s2, side, side, L.guard);
   }
   return L;
-}
-
-vec2 face_texel_plane(const LightFace& f, float x, float y) {
-  return vec2(f.left + (x + 0.5f) * ((f.right_edge - f.left) / float(f.width)),
-              f.top - (y + 0.5f) * ((f.top - f.bottom) / float(f.height)));
 }
 
 vec3 face_texel_direction(const LightFace& f, float sx, float sy) {

@@ -79,8 +79,6 @@ inline vec2 face_texel_coords(const LightFace& f, const vec3& dir) {
   return vec2((u - f.left) / (f.right_edge - f.left) * float(f.width),
               (f.top - v) / (f.top - f.bottom) * float(f.height));
 }
-// Plane coordinates (u, v) of texel centre (x + 0.5, y + 0.5).
-vec2 face_texel_plane(const LightFace& face, float x, float y);
 // World-space unit direction through continuous texel coordinates (sx, sy).
 vec3 face_texel_direction(const LightFace& face, float sx, float sy);
 // World → clip matrix of a face (OpenGL clip space, light near/far planes).
