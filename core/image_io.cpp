@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -143,6 +144,65 @@ void write_exr_texels(const std::string& path, const ImageU32& texels) {
 
 ImageU32 read_exr_texels(const std::string& path) {
   return read_exr_channel<uint32_t>(path, "texel", Imf::UINT);
+}
+
+void write_exr_rgb(const std::string& path, const ImageF& rgb) {
+  SL_CHECK_EQ(rgb.channels, 3);
+  SL_CHECK_EQ(rgb.data.size(), rgb.pixel_count() * 3);
+  if (rgb.empty())
+    throw InputError(path, "cannot write an empty " + std::to_string(rgb.width) + "x" +
+                               std::to_string(rgb.height) + " image");
+  try {
+    Imf::Header header(rgb.width, rgb.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const char* names[3] = {"R", "G", "B"};
+    Imf::FrameBuffer fb;
+    for (int c = 0; c < 3; ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+      fb.insert(names[c], Imf::Slice(Imf::FLOAT,
+                                     reinterpret_cast<char*>(const_cast<float*>(rgb.plane(c))),
+                                     sizeof(float), sizeof(float) * size_t(rgb.width)));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(rgb.height);
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot write EXR: ") + e.what());
+  }
+}
+
+ImageF read_exr_rgb(const std::string& path) {
+  require_readable(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imf::ChannelList& chans = header.channels();
+    const bool rgb = chans.findChannel("R") && chans.findChannel("G") && chans.findChannel("B");
+    if (!rgb && !chans.findChannel("Y"))
+      throw InputError(path, "has neither R, G, B nor Y channels");
+    const Imath::Box2i dw = header.dataWindow();
+    const long long w = (long long)dw.max.x - dw.min.x + 1;
+    const long long h = (long long)dw.max.y - dw.min.y + 1;
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+      throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
+                                 " is outside [1, " + std::to_string(kMaxImageSide) + "]");
+    ImageF img(int(w), int(h), 3);
+    Imf::FrameBuffer fb;
+    // OpenEXR converts HALF/UINT channels to the FLOAT slices on read.
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < (rgb ? 3 : 1); ++c)
+      fb.insert(rgb ? names[c] : "Y",
+                Imf::Slice::Make(Imf::FLOAT, img.plane(c), dw, sizeof(float), sizeof(float) * size_t(w)));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    if (!rgb)
+      for (int c = 1; c < 3; ++c) std::copy(img.plane(0), img.plane(0) + img.pixel_count(), img.plane(c));
+    return img;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot read EXR: ") + e.what());
+  }
 }
 
 void write_png_grey(const std::string& path, const ImageF& image) {

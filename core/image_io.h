@@ -13,6 +13,11 @@ void write_exr_mask(const std::string& path, const ImageF& mask);
 ImageF read_exr_mask(const std::string& path);
 void write_exr_texels(const std::string& path, const ImageU32& texels);
 ImageU32 read_exr_texels(const std::string& path);
+// Linear RGB EXR (float32 channels R, G, B) of a 3-channel image (shaded projector renders).
+void write_exr_rgb(const std::string& path, const ImageF& rgb);
+// Reads an EXR as linear RGB (3 channels): R, G, B if present (any pixel type, converted to
+// float), else a grey Y channel copied to all three. Throws InputError naming the file.
+ImageF read_exr_rgb(const std::string& path);
 // 8-bit PNG of a one-channel image in [0,1] (clamped), sRGB-encoded.
 void write_png_grey(const std::string& path, const ImageF& image);
 // 8-bit PNG of an RGB image (3 channels, linear [0,1], sRGB-encoded on write).

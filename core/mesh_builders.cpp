@@ -6,6 +6,19 @@
 #include "core/error.h"
 
 namespace shadowlab {
+
+// Adds an empty mesh with its own material and returns it.
+Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo) {
+  Material mat;
+  mat.name = name;
+  mat.albedo = albedo;
+  scene.materials.push_back(mat);
+  Mesh mesh;
+  mesh.name = name;
+  mesh.material = int(scene.materials.size()) - 1;
+  scene.meshes.push_back(std::move(mesh));
+  return scene.meshes.back();
+}
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;

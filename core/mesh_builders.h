@@ -7,6 +7,9 @@
 
 namespace shadowlab {
 
+// Appends an empty mesh with its own material (albedo, opaque) to the scene and returns it.
+Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo);
+
 // Planar rectangle origin + s·edge_u + t·edge_v, s, t in [0, 1], split into nu × nv quads
 // (2 triangles each). Front side and flat normal: normalize(cross(edge_u, edge_v)).
 void add_grid_quad(Mesh& mesh, vec3 origin, vec3 edge_u, vec3 edge_v, int nu, int nv);

@@ -68,6 +68,12 @@ void validate_scene(const Scene& scene, const std::string& where) {
     throw InputError(where, "light position must be finite and radius >= 0");
   if (!(l.near > 0.0f) || !(l.far > l.near) || !std::isfinite(l.far))
     throw InputError(where, "light near/far must satisfy 0 < near < far < inf");
+  if (scene.projector.enabled) {
+    validate_projector(scene.projector, where);
+    if (glm::length(scene.projector.position - l.position) > 1e-5f * (1.0f + glm::length(l.position)) ||
+        l.radius != 0.0f)
+      throw InputError(where, "a projector scene's point light must sit at the projector with radius 0");
+  }
   const Camera& c = scene.camera;
   if (!is_finite(c.eye) || !is_finite(c.target) || !is_finite(c.up))
     throw InputError(where, "camera eye/target/up must be finite");

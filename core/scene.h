@@ -8,6 +8,7 @@
 
 #include "core/image.h"
 #include "core/math.h"
+#include "core/projector.h"
 
 namespace shadowlab {
 
@@ -55,6 +56,11 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<ImageF> textures;   // RGBA, linear colour, alpha as stored
   PointLight light;
+  // When projector.enabled, the light is a slide projector: `light` then sits at the
+  // projector's position with radius 0 (set_projector in core/scene_library.h), so visibility
+  // from it is what every technique and the reference compute, and a point outside the
+  // projector's frustum receives no light (mask 0, technique.h).
+  Projector projector;
   Camera camera;
   uint64_t seed = 1;              // scene seed for every stochastic choice (RNG streams)
 

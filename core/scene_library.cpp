@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/bunny_scene.h"
 #include "core/error.h"
 #include "core/mesh_builders.h"
 #include "core/obj_loader.h"
@@ -10,18 +11,6 @@
 namespace shadowlab {
 namespace {
 
-// Adds an empty mesh with its own material and returns it.
-Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo) {
-  Material mat;
-  mat.name = name;
-  mat.albedo = albedo;
-  scene.materials.push_back(mat);
-  Mesh mesh;
-  mesh.name = name;
-  mesh.material = int(scene.materials.size()) - 1;
-  scene.meshes.push_back(std::move(mesh));
-  return scene.meshes.back();
-}
 
 mat4 box_model(vec3 centre, vec3 size, float yaw_deg = 0.0f, vec3 axis = vec3(0, 1, 0)) {
   mat4 m = glm::translate(mat4(1.0f), centre);
@@ -275,7 +264,7 @@ std::string known_names() {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"default", "plane", "room100k", "room1m"};
+  return {"default", "plane", "room100k", "room1m", "bunny"};
 }
 
 Scene make_builtin_scene(const std::string& name) {
@@ -288,6 +277,8 @@ Scene make_builtin_scene(const std::string& name) {
     s = make_room_scene(name, 40, 20, 40, 20);  // the OBJ's tessellation: 99,852 triangles
   else if (name == "room1m")
     s = make_room_scene(name, 128, 61, 128, 62);  // 12 + 32·15,360 + 32·15,872 = 999,436
+  else if (name == "bunny")
+    s = make_bunny_scene();
   else
     throw InputError("--scene",
                      "unknown built-in scene '" + name + "' (known: " + known_names() + ")");
@@ -349,6 +340,22 @@ void add_ground_plane(Scene& scene, float size_factor) {
     reach = std::max(reach, glm::length(corner - scene.light.position));
   }
   scene.light.far = std::max(scene.light.far, 1.02f * reach);
+}
+
+void set_projector(Scene& scene, Projector projector, const std::string& where) {
+  projector.enabled = true;
+  validate_projector(projector, where);
+  scene.projector = std::move(projector);
+  scene.light.position = scene.projector.position;
+  scene.light.radius = 0.0f;
+  const Bounds b = scene_bounds(scene);
+  float reach = 0.0f;
+  for (int i = 0; i < 8 && b.valid(); ++i) {
+    const vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+    reach = std::max(reach, glm::length(corner - scene.light.position));
+  }
+  scene.light.far = std::max(scene.light.far, 1.02f * reach);
+  scene.light.near = std::min(scene.light.near, 1e-3f * scene.light.far);
 }
 
 }  // namespace shadowlab

@@ -24,6 +24,8 @@ std::vector<std::string> builtin_scene_names();
 //              triangles, the OBJ's tessellation (spheres 40 × 20, tori 40 × 20).
 //   "room1m":   the same layout tessellated finer (spheres 128 × 61 = 15,360 triangles, tori
 //              128 × 62 = 15,872): 999,436 triangles. See the .cpp for the layout.
+//   "bunny":   the Stanford bunny from the shared assets on a ground quad before a wall, with a
+//              posed slide projector (core/bunny_scene.h); needs the assets folder.
 // Throws InputError("--scene", "unknown built-in scene 'x' (known: default, plane, ...)").
 Scene make_builtin_scene(const std::string& name);
 
@@ -47,5 +49,11 @@ void apply_camera_size(Scene& scene, int width, int height);
 // bounds diagonal. For OBJ models without a receiver (bunny, plants); make_obj_scene does not
 // add it by itself. The light's far is enlarged to reach the quad's corners.
 void add_ground_plane(Scene& scene, float size_factor = 2.0f);
+
+// Makes the scene's light the given projector (enabled): the point light moves to the
+// projector's position with radius 0, its far grows to 1.02 × the distance to the farthest
+// corner of the scene bounds (stored distances stay in [0, 1]) and its near becomes
+// min(near, 1e-3 × far). Validates the projector (InputError naming `where`).
+void set_projector(Scene& scene, Projector projector, const std::string& where);
 
 }  // namespace shadowlab

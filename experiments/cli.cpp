@@ -90,7 +90,7 @@ vec3 ParsedArgs::get_vec3(const std::string& flag, const vec3& fallback) const {
 
 std::vector<FlagDef> common_flags() {
   return {
-      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m) or an .obj file (default: default)"},
+      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny) or an .obj file (default: default)"},
       {"--width", "W", "image width in pixels (default: the scene's camera, 1024)"},
       {"--height", "H", "image height in pixels (default: the scene's camera, 768)"},
       {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
@@ -99,6 +99,11 @@ std::vector<FlagDef> common_flags() {
       {"--eye", "X,Y,Z", "camera position, metres (default: the scene's)"},
       {"--target", "X,Y,Z", "camera target, metres (default: the scene's)"},
       {"--fov", "DEG", "vertical field of view in degrees (default: the scene's)"},
+      {"--slide", "SLIDE", "make the light a slide projector casting SLIDE: spot, grid:amp=A,freq=F, or a .png/.exr file"},
+      {"--projector-pos", "X,Y,Z", "projector position, metres (default: the scene's pose, else the light)"},
+      {"--projector-target", "X,Y,Z", "point the projector aims at (default: the scene's pose, else the camera target)"},
+      {"--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)"},
+      {"--projector-aspect", "A", "projector slide width / height (default 1)"},
       {"--out", "DIR", "output folder"},
       {"--help", "", "print this help"},
   };
@@ -151,6 +156,39 @@ std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& 
   return s;
 }
 
+void apply_projector_flags(const ParsedArgs& args, Scene& scene) {
+  const char* projector_flags[] = {"--projector-pos", "--projector-target", "--projector-fov",
+                                   "--projector-aspect"};
+  if (!args.has("--slide")) {
+    for (const char* f : projector_flags)
+      if (args.has(f)) throw InputError(f, "needs --slide (the projector's slide)");
+    return;
+  }
+  if (args.has("--light-radius") && scene.light.radius > 0.0f)
+    throw InputError("--light-radius", "a slide projector is a point source; drop --light-radius or --slide");
+  Projector p = scene.projector;
+  vec3 target = scene.camera.target;
+  if (p.posed) {
+    target = p.position + p.direction;
+  } else {
+    p.position = scene.light.position;
+    p.fov_y_deg = 60.0f;
+  }
+  if (args.has("--light-pos") && !args.has("--projector-pos")) p.position = scene.light.position;
+  p.position = args.get_vec3("--projector-pos", p.position);
+  target = args.get_vec3("--projector-target", target);
+  p.direction = target - p.position;
+  if (!(glm::length(p.direction) > 0.0f))
+    throw InputError(args.has("--projector-target") ? "--projector-target" : "--projector-pos",
+                     "the projector's target coincides with its position");
+  // An aim straight up or down gets a horizontal up vector instead of +y.
+  if (glm::length(glm::cross(glm::normalize(p.direction), p.up)) < 1e-3f) p.up = vec3(0.0f, 0.0f, -1.0f);
+  p.fov_y_deg = float(args.get_double("--projector-fov", p.fov_y_deg, 0.1, 169.0));
+  p.aspect = float(args.get_double("--projector-aspect", p.aspect, 0.05, 20.0));
+  p.slide = make_slide(args.get("--slide", ""), "--slide");
+  set_projector(scene, std::move(p), "--slide");
+}
+
 Scene scene_from_args(const ParsedArgs& args) {
   if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
   const std::string name = args.get("--scene", "default");
@@ -164,6 +202,7 @@ Scene scene_from_args(const ParsedArgs& args) {
   cam.fov_y_deg = float(args.get_double("--fov", cam.fov_y_deg, 1.0, 170.0));
   scene.light.position = args.get_vec3("--light-pos", scene.light.position);
   scene.light.radius = float(args.get_double("--light-radius", scene.light.radius, 0.0, 1e4));
+  apply_projector_flags(args, scene);
   validate_scene(scene, is_file ? name : "--scene " + name);
   return scene;
 }

@@ -43,6 +43,11 @@ std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& 
 // with every override applied, validated.
 Scene scene_from_args(const ParsedArgs& args);
 
+// With --slide: makes the scene's light a slide projector (pose from the scene, else from the
+// light aimed at the camera target; --projector-* flags override). Without it, any
+// --projector-* flag is an InputError.
+void apply_projector_flags(const ParsedArgs& args, Scene& scene);
+
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
 // other exception → exit code 1. Prints usage and exits 0 on --help.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);

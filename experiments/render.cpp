@@ -1,12 +1,15 @@
-// render: one technique on one scene → mask.exr, mask.png, texel.exr, timing.json.
+// render: one technique on one scene → mask.exr, mask.png, texel.exr, timing.json; with a
+// slide projector (--slide) also the shaded image shaded.exr (linear) and shaded.png (sRGB).
 #include <chrono>
 #include <cstdio>
 
+#include "core/image_io.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
 #include "experiments/output_files.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
+#include "techniques/projector_shading.h"
 
 using namespace shadowlab;
 
@@ -16,6 +19,7 @@ int main(int argc, char** argv) {
     defs.push_back({"--technique", "SPEC", "technique spec, e.g. csm:res=1024,pcf=3 or rt:spp=256 (required)"});
     defs.push_back({"--repeats", "N", "timing repeats, median reported (default 5)"});
     defs.push_back({"--no-cache", "", "do not read or write the reference cache"});
+    defs.push_back({"--ambient", "A", "projector scenes: ambient level of the shaded image, [0, 1] (default 0.1)"});
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
       std::printf("%s", usage_text("render --technique SPEC --out DIR [flags]", defs).c_str());
@@ -26,7 +30,11 @@ int main(int argc, char** argv) {
     const TechniqueSpec spec = parse_technique_spec(args.get("--technique", ""), "--technique");
     validate_technique(spec, "--technique");
     const int repeats = args.get_int("--repeats", 5, 1, 1000);
+    ProjectorShading shading;
+    shading.ambient = float(args.get_double("--ambient", shading.ambient, 0.0, 1.0));
     const Scene scene = scene_from_args(args);
+    if (args.has("--ambient") && !scene.projector.enabled)
+      throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     const std::string out = args.get("--out", "");
     make_output_dir(out, "--out");
 
@@ -38,11 +46,17 @@ int main(int argc, char** argv) {
     opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
     write_result_files(out, "", r, spec.text, camera_ms);
+    if (scene.projector.enabled) {
+      const ImageF shaded = shade_projector(scene, g, r.mask, shading);
+      write_exr_rgb(out + "/shaded.exr", shaded);
+      write_png_rgb(out + "/shaded.png", shaded);
+    }
     std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f + lookup %.3f), camera pass %.3f ms; %s\n",
                 spec.text.c_str(), scene.name.c_str(), g.width, g.height, r.shadow_ms(), r.map_ms,
                 r.lookup_ms, camera_ms, r.notes.c_str());
-    std::printf("wrote %s/mask.exr, mask.png%s, timing.json\n", out.c_str(),
-                r.texels.empty() ? "" : ", texel.exr");
+    std::printf("wrote %s/mask.exr, mask.png%s, timing.json%s\n", out.c_str(),
+                r.texels.empty() ? "" : ", texel.exr",
+                scene.projector.enabled ? ", shaded.exr, shaded.png" : "");
     return 0;
   });
 }

@@ -1,5 +1,7 @@
 #include "techniques/cube_shadow_map.h"
 
+#include "techniques/depth_quantize.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -80,6 +82,7 @@ CubeShadowParams parse_cube_params(const TechniqueSpec& spec, const char* flag) 
   p.bias = float(r.get_double("bias", p.bias, 0.0, 1e3));
   p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
   p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
+  p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
   r.reject_unknown();
   if (p.pcf > 1 && p.pcf % 2 == 0)
     throw InputError(flag, spec.name + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
@@ -277,6 +280,9 @@ ShadowResult run_cube_shadow_map(const TechniqueSpec& spec, const Scene& scene,
     auto t0 = std::chrono::steady_clock::now();
     needed = cube_faces_needed(scene, gbuffer, p);
     render_cube_map(scene, needed, p.res, map, &submitted, &culled);
+    for (int f = 0; f < kCubeFaces; ++f)
+      if (map.rendered[size_t(f)])
+        quantize_depths(map.depth[size_t(f)].data(), map.depth[size_t(f)].size(), p.depth);
     map_t.push_back(ms_since(t0));
     t0 = std::chrono::steady_clock::now();
     lookup_cube_map(scene, gbuffer, map, p, r.mask, options.want_texels ? &r.texels : nullptr);

@@ -11,6 +11,7 @@
 //          (tan clamped to 10, i.e. N·L >= 0.1) × (pcf + 1)/2 (the filter's reach in texels), metres
 //   normal normal-offset bias: the lookup point moves along the geometric normal by
 //          normal × texel size at the receiver × (1 - N·L) (techniques/normal_offset.h); 0 = off
+//   depth  stored precision: f32 (default), 16, 8, 8cubic (techniques/depth_quantize.h)
 #include <array>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "core/scene.h"
 #include "raster/raster_types.h"
 #include "techniques/cube_faces.h"
+#include "techniques/depth_quantize.h"
 #include "techniques/technique.h"
 
 namespace shadowlab {
@@ -28,6 +30,7 @@ struct CubeShadowParams {
   float bias = 0.01f;
   float slope = 1.0f;
   float normal = 0.0f;
+  DepthFormat depth = DepthFormat::F32;
 };
 
 CubeShadowParams parse_cube_params(const TechniqueSpec& spec, const char* flag);

@@ -86,7 +86,8 @@ inline Bilinear bilinear_taps(vec2 st, int w, int h) {
 std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
                                const FaceMapParams& p);
 
-// The pixel loop: visibility(receiver) for every covered, light-facing pixel; texel indices
+// The pixel loop: visibility(receiver) for every covered, light-facing pixel (on the projector
+// layout: inside the projector's frustum, else 0); texel indices
 // when `texels` is given. (faces_light() is false for a receiver at the light itself, so every
 // receiver reaching make_receiver() has a distance > 0.)
 template <class Visibility>
@@ -96,6 +97,8 @@ void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout
   shape_single_channel(mask, g.width, g.height);
   if (texels) shape_single_channel(*texels, g.width, g.height);
   const PointLight& light = scene.light;
+  const bool projector = layout.kind == FaceLayoutKind::Projector;
+  const ProjectorFrame frame = projector ? projector_frame(scene.projector) : ProjectorFrame{};
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       if (texels) texels->data[i] = kNoTexel;
@@ -103,7 +106,9 @@ void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout
         mask.data[i] = 1.0f;
         continue;
       }
-      if (!faces_light(g, i, light.position)) {
+      vec2 slide_st;
+      if (!faces_light(g, i, light.position) ||
+          (projector && !projector_slide_coords(frame, light.position, g.position[i], slide_st))) {
         mask.data[i] = 0.0f;
         continue;
       }

@@ -5,15 +5,16 @@
 namespace shadowlab {
 
 bool is_face_map_technique(const std::string& name) {
-  return name == "tsm" || name == "cvsm" || name == "tvsm" || name == "cesm" || name == "tesm";
+  return name == "tsm" || name == "psm" || name == "cvsm" || name == "tvsm" || name == "cesm" || name == "tesm";
 }
 
 FaceMapParams parse_face_map_params(const TechniqueSpec& spec, const char* flag) {
   FaceMapParams p;
   const std::string& n = spec.name;
   SL_CHECK(is_face_map_technique(n));
-  p.layout = n[0] == 't' ? FaceLayoutKind::Tetrahedron : FaceLayoutKind::Cube;
-  p.filter = n == "tsm" ? MapFilter::Depth
+  p.layout = n[0] == 't' ? FaceLayoutKind::Tetrahedron
+                         : (n[0] == 'p' ? FaceLayoutKind::Projector : FaceLayoutKind::Cube);
+  p.filter = n == "tsm" || n == "psm" ? MapFilter::Depth
                         : (n.find("vsm") != std::string::npos ? MapFilter::Variance
                                                               : MapFilter::Exponential);
   SpecReader r(spec, flag);
@@ -24,6 +25,7 @@ FaceMapParams parse_face_map_params(const TechniqueSpec& spec, const char* flag)
   p.bias = float(r.get_double("bias", depth ? p.bias : 0.0, 0.0, 1e3));
   p.slope = float(r.get_double("slope", depth ? p.slope : 0.0, 0.0, 1e3));
   p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
+  p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
   if (depth) {
     p.pcf = r.get_int("pcf", p.pcf, 1, 15);
     if (p.pcf > 1 && p.pcf % 2 == 0)

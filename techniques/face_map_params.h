@@ -1,13 +1,16 @@
 #pragma once
 // Parameters of the face-map techniques (the generic layouts of techniques/light_faces.h):
 //   tsm          tetrahedral shadow map, depth comparison with PCF
+//   psm          projector shadow map: one perspective face, the slide projector's frustum
+//                (scene.projector), depth comparison with PCF
 //   cvsm, tvsm   variance shadow maps on the cube / tetrahedral layout
 //   cesm, tesm   exponential shadow maps on the cube / tetrahedral layout
-// Spec keys (all techniques): res (comparable cube edge N), bias (m), slope, normal;
-// tsm: pcf; moment maps: blur; VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment,
+// Spec keys (all techniques): res (comparable cube edge N; psm: the map's height), bias (m),
+// slope, normal, depth (stored precision, techniques/depth_quantize.h); tsm, psm: pcf; moment maps: blur; VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment,
 // fp32; ESM: c. Units, defaults and meanings are in the struct below.
 #include <string>
 
+#include "techniques/depth_quantize.h"
 #include "techniques/light_faces.h"
 #include "techniques/technique_spec.h"
 
@@ -18,7 +21,9 @@ enum class MapFilter { Depth, Variance, Exponential };
 struct FaceMapParams {
   FaceLayoutKind layout = FaceLayoutKind::Tetrahedron;
   MapFilter filter = MapFilter::Depth;
-  int res = 512;          // cube face edge N; the tetrahedral texture has ~6·N² texels
+  int res = 512;          // cube face edge N; the tetrahedral texture has ~6·N² texels;
+                          // psm: height N, width round(N × aspect), guard excluded
+  DepthFormat depth = DepthFormat::F32;  // stored precision, quantized before any filtering
   // Bias modes, metres, applied to the receiver's radial distance before comparison:
   float bias = 0.01f;     // constant
   float slope = 1.0f;     // × texel size at the receiver × tan(angle to light) (tan <= 10) × filter reach

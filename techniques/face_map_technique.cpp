@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/timer.h"
 #include "techniques/face_map_lookup.h"
 #include "techniques/moment_filter.h"
@@ -15,11 +16,16 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
   const size_t grain = 8192;
   const size_t chunks = (g.pixel_count() + grain - 1) / grain;
   const size_t nf = layout.faces.size();
+  const bool projector = layout.kind == FaceLayoutKind::Projector;
+  const ProjectorFrame frame = projector ? projector_frame(scene.projector) : ProjectorFrame{};
   std::vector<std::vector<char>> flags(chunks, std::vector<char>(nf, 0));
   parallel_for_chunks(g.pixel_count(), grain, [&](size_t b, size_t e) {
     std::vector<char>& f = flags[b / grain];
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
+      vec2 st;
+      if (projector && !projector_slide_coords(frame, scene.light.position, g.position[i], st))
+        continue;
       const vec3 to_p = g.position[i] - scene.light.position;
       // The lookup's face: of the receiver itself, or of its normal-offset point.
       f[size_t(p.normal > 0.0f
@@ -36,6 +42,9 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
 void build_face_map(const Scene& scene, const FaceMapParams& p, const std::vector<bool>& needed,
                     FaceMap& map) {
   render_face_distances(scene, map.layout, needed, map.dist);
+  for (size_t f = 0; f < map.dist.distance.size(); ++f)
+    if (map.dist.rendered[f])
+      quantize_depths(map.dist.distance[f].data(), map.dist.distance[f].size(), p.depth);
   const size_t nf = map.layout.faces.size();
   map.a.resize(nf);
   map.b.resize(nf);
@@ -174,7 +183,11 @@ ShadowResult run_face_map_technique(const TechniqueSpec& spec, const Scene& scen
   const FaceMapParams p = parse_face_map_params(spec, options.flag);
   FaceMap map;
   const int guard = face_map_guard(p);
-  map.layout = p.layout == FaceLayoutKind::Cube ? cube_layout(p.res, guard) : tetra_layout(p.res, guard);
+  if (p.layout == FaceLayoutKind::Projector && !scene.projector.enabled)
+    throw InputError(options.flag, spec.name + " needs a slide projector light (--slide)");
+  map.layout = p.layout == FaceLayoutKind::Cube        ? cube_layout(p.res, guard)
+               : p.layout == FaceLayoutKind::Projector ? projector_layout(scene.projector, p.res, guard)
+                                                       : tetra_layout(p.res, guard);
   ShadowResult r;
   r.faces_total = int(map.layout.faces.size());
   std::vector<bool> needed;

@@ -81,6 +81,22 @@ FaceLayout tetra_layout(int res, int guard) {
   return L;
 }
 
+FaceLayout projector_layout(const Projector& projector, int res, int guard) {
+  FaceLayout L;
+  L.kind = FaceLayoutKind::Projector;
+  L.res = res;
+  L.guard = guard;
+  const ProjectorFrame fr = projector_frame(projector);
+  LightFace f;
+  f.forward = fr.forward;
+  f.up = fr.up;
+  f.right = fr.right;
+  const int w = std::max(1, int(std::lround(double(res) * double(projector.aspect))));
+  set_extent(f, -fr.tan_x, fr.tan_x, -fr.tan_y, fr.tan_y, w + 2 * guard, res + 2 * guard, guard);
+  L.faces.push_back(f);
+  return L;
+}
+
 vec3 face_texel_direction(const LightFace& f, float sx, float sy) {
   const float u = f.left + sx / float(f.width) * (f.right_edge - f.left);
   const float v = f.top - sy / float(f.height) * (f.top - f.bottom);

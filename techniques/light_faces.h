@@ -21,6 +21,10 @@
 // S × S texture (face 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right), each face
 // S/2 × S/2 square texels over a 1.155:1 rectangle, so texels are non-square. S is the even
 // size whose texel count is closest to 6·N² for the comparable cube edge N (Kluczek).
+// Projector: 1 face, the slide projector's frustum (core/projector.h): forward, up and right
+// of its frame, the owned region [-tan_x, tan_x] × [-tan_y, tan_y], round(N·aspect) × N texels
+// plus the guard. Every direction maps to face 0; directions outside the frustum receive no
+// light and are never looked up.
 #include <vector>
 
 #include "core/math.h"
@@ -29,7 +33,7 @@
 
 namespace shadowlab {
 
-enum class FaceLayoutKind { Cube, Tetrahedron };
+enum class FaceLayoutKind { Cube, Tetrahedron, Projector };
 
 // Light-space normals of the four tetrahedral faces (unit vectors).
 extern const vec3 kTetraNormals[4];
@@ -54,12 +58,15 @@ struct FaceLayout {
 FaceLayout cube_layout(int res, int guard);
 // Tetrahedral layout for comparable cube edge `res`: faces of S/2 × S/2 texels, guard included.
 FaceLayout tetra_layout(int res, int guard);
+// Projector layout for the projector's frame: one face of round(res·aspect) × res owned texels.
+FaceLayout projector_layout(const Projector& projector, int res, int guard);
 // Edge S of the tetrahedral texture for cube edge n: the even S with S² closest to 6·n².
 int tetra_atlas_size(int n);
 
 // Face owning direction `dir` (non-zero) from the light. (Inline: once per lookup.)
 inline int face_of(const FaceLayout& layout, const vec3& dir) {
   if (layout.kind == FaceLayoutKind::Cube) return cube_face_of(dir);
+  if (layout.kind == FaceLayoutKind::Projector) return 0;
   int best = 0;
   float best_dot = glm::dot(dir, kTetraNormals[0]);
   for (int i = 1; i < 4; ++i) {

@@ -1,6 +1,7 @@
 #include "techniques/technique.h"
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "techniques/cube_shadow_map.h"
 #include "techniques/face_map_technique.h"
 #include "techniques/ray_traced.h"
@@ -19,7 +20,9 @@ struct Entry {
 // The registry: one line per technique.
 const Entry kTechniques[] = {
     {"rt", "Embree ray tracing (reference): rt:spp=256,hard=0,seed=1", run_ray_traced},
-    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1,normal=0", run_cube_shadow_map},
+    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1,normal=0,depth=f32", run_cube_shadow_map},
+    {"psm", "projector shadow map (one face, the slide projector's frustum; needs --slide): "
+            "psm:res=512,pcf=1,bias=0.01,slope=1,normal=0,depth=f32", run_face_map_technique},
     {"tsm", "tetrahedral shadow map (4 faces in quadrants of one ~6·res² texture): "
             "tsm:res=512,pcf=1,bias=0.01,slope=1,normal=0", run_face_map_technique},
     {"cvsm", "cube variance shadow map: cvsm:res=512,blur=3,min_variance=1e-6,bleed=0,"
@@ -42,7 +45,22 @@ const Entry& find(const TechniqueSpec& spec, const char* flag) {
 
 ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options) {
-  return find(spec, options.flag).run(spec, scene, gbuffer, options);
+  ShadowResult r = find(spec, options.flag).run(spec, scene, gbuffer, options);
+  if (scene.projector.enabled) gate_by_projector(scene, gbuffer, r);
+  return r;
+}
+
+void gate_by_projector(const Scene& scene, const GBuffer& g, ShadowResult& r) {
+  const ProjectorFrame frame = projector_frame(scene.projector);
+  parallel_for_chunks(g.pixel_count(), 8192, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      vec2 st;
+      if (!g.covered[i] || projector_slide_coords(frame, scene.projector.position, g.position[i], st))
+        continue;
+      r.mask.data[i] = 0.0f;
+      if (!r.texels.empty()) r.texels.data[i] = kNoTexel;
+    }
+  });
 }
 
 void validate_technique(const TechniqueSpec& spec, const char* flag) {

@@ -38,9 +38,14 @@ struct RunOptions {
   bool progress = false;        // progress line with ETA on stderr for long work (references)
 };
 
-// Runs the technique named by spec (throws InputError for an unknown name or parameter).
+// Runs the technique named by spec (throws InputError for an unknown name or parameter). With a
+// slide projector (scene.projector.enabled), pixels outside the projector's frustum get mask 0
+// and no texel in every technique (gate_by_projector, outside the timed work): the spot light's
+// cone is part of the light, like "facing away" is.
 ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options);
+// The projector gate of run_technique.
+void gate_by_projector(const Scene& scene, const GBuffer& gbuffer, ShadowResult& result);
 // Checks a spec without running it (name and every parameter), throwing like run_technique.
 void validate_technique(const TechniqueSpec& spec, const char* flag);
 // Registered technique names with one-line descriptions, for --help.

@@ -97,6 +97,18 @@ bool SpecReader::get_bool(const std::string& key, bool fallback) {
   return get_int(key, fallback ? 1 : 0, 0, 1) != 0;
 }
 
+std::string SpecReader::get_choice(const std::string& key, const std::string& fallback,
+                                   const std::vector<std::string>& choices) {
+  used_.push_back(key);
+  const auto it = spec_.params.find(key);
+  if (it == spec_.params.end()) return fallback;
+  if (std::find(choices.begin(), choices.end(), it->second) != choices.end()) return it->second;
+  std::string known;
+  for (const std::string& c : choices) known += (known.empty() ? "" : ", ") + c;
+  throw InputError(flag_, spec_.name + ": '" + key + "' must be one of " + known + ", got '" +
+                              it->second + "'");
+}
+
 void SpecReader::reject_unknown() const {
   for (const auto& [k, v] : spec_.params)
     if (std::find(used_.begin(), used_.end(), k) == used_.end()) {

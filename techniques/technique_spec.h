@@ -31,6 +31,9 @@ class SpecReader {
   int get_int(const std::string& key, int fallback, int lo, int hi);
   double get_double(const std::string& key, double fallback, double lo, double hi);
   bool get_bool(const std::string& key, bool fallback);
+  // One of `choices` (exact text), else InputError listing them.
+  std::string get_choice(const std::string& key, const std::string& fallback,
+                         const std::vector<std::string>& choices);
   void reject_unknown() const;
 
  private:

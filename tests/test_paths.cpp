@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "core/assets.h"
+
 namespace shadowlab::test {
 
 std::string source_path(const std::string& relative) {
@@ -14,10 +16,6 @@ std::string binary_path(const std::string& relative) {
   return path;
 }
 
-std::string assets_dir() {
-  const std::filesystem::path dir =
-      std::filesystem::path(SHADOWLAB_SOURCE_DIR) / ".." / "shared" / "assets";
-  return std::filesystem::is_directory(dir) ? std::filesystem::canonical(dir).string() : "";
-}
+std::string assets_dir() { return shared_assets_dir(); }
 
 }  // namespace shadowlab::test

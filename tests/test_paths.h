@@ -8,7 +8,7 @@ namespace shadowlab::test {
 std::string source_path(const std::string& relative);
 // Absolute path of a file inside the build tree (scratch output of tests goes there).
 std::string binary_path(const std::string& relative);
-// Folder of the shared read-only assets (../shared/assets next to the repository); empty if absent.
+// Folder of the shared read-only assets (core/assets.h: shared_assets_dir()); empty if absent.
 std::string assets_dir();
 
 }  // namespace shadowlab::test

@@ -1,0 +1,123 @@
+#include "core/slide.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/parse_number.h"
+
+namespace shadowlab {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i])
+      return false;
+  return true;
+}
+
+ImageF bake(int res, float amp, float freq) {
+  ImageF img(res, res, 3);
+  for (int y = 0; y < res; ++y)
+    for (int x = 0; x < res; ++x) {
+      const vec2 st((float(x) + 0.5f) / float(res), (float(y) + 0.5f) / float(res));
+      const float v = spot_profile(st) * grid_modulation(st, amp, freq);
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = v;
+    }
+  return img;
+}
+
+}  // namespace
+
+float spot_profile(vec2 st) {
+  const double dx = 2.0 * double(st.x) - 1.0, dy = 2.0 * double(st.y) - 1.0;
+  const double r = std::sqrt(dx * dx + dy * dy);
+  const double t = std::clamp((r - 0.6) / 0.4, 0.0, 1.0);
+  return float(1.0 - t * t * (3.0 - 2.0 * t));
+}
+
+float grid_modulation(vec2 st, float amp, float freq) {
+  auto m = [&](double x) {
+    return 1.0 - double(amp) * 0.5 * (1.0 - std::cos(2.0 * kPi * double(freq) * (x - 0.5)));
+  };
+  return float(m(st.x) * m(st.y));
+}
+
+vec3 sample_slide(const ImageF& rgb, vec2 st) {
+  const int w = rgb.width, h = rgb.height;
+  // Texel space with centres at integers; clamp to edge.
+  const float gx = std::clamp(st.x * float(w) - 0.5f, 0.0f, float(w - 1));
+  const float gy = std::clamp(st.y * float(h) - 0.5f, 0.0f, float(h - 1));
+  const int x0 = int(gx), y0 = int(gy);
+  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+  const float fx = gx - float(x0), fy = gy - float(y0);
+  vec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const float top = (1.0f - fx) * rgb.at(x0, y0, c) + fx * rgb.at(x1, y0, c);
+    const float bot = (1.0f - fx) * rgb.at(x0, y1, c) + fx * rgb.at(x1, y1, c);
+    out[c] = (1.0f - fy) * top + fy * bot;
+  }
+  return out;
+}
+
+Slide make_slide(const std::string& spec, const std::string& flag) {
+  Slide slide;
+  slide.name = spec;
+  if (ends_with(spec, ".png") || ends_with(spec, ".jpg") || ends_with(spec, ".jpeg")) {
+    const ImageF rgba = load_texture_rgba(spec);  // sRGB → linear, 4 channels
+    slide.rgb = ImageF(rgba.width, rgba.height, 3);
+    for (int c = 0; c < 3; ++c)
+      std::copy(rgba.plane(c), rgba.plane(c) + rgba.pixel_count(), slide.rgb.plane(c));
+    return slide;
+  }
+  if (ends_with(spec, ".exr")) {
+    slide.rgb = read_exr_rgb(spec);
+    for (float v : slide.rgb.data)
+      if (!std::isfinite(v) || v < 0.0f)
+        throw InputError(spec, "slide has a negative or non-finite value");
+    return slide;
+  }
+  const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  if (name != "spot" && name != "grid")
+    throw InputError(flag, "unknown slide '" + spec +
+                               "' (known: spot, grid:amp=A,freq=F, or a .png/.jpg/.exr file)");
+  double amp = 0.0, freq = 0.0;
+  long res = 512;
+  bool have_amp = false, have_freq = false;
+  std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  if (colon != std::string::npos && rest.empty())
+    throw InputError(flag, "slide '" + spec + "' has an empty parameter list");
+  while (!rest.empty()) {
+    const size_t comma = rest.find(',');
+    const std::string kv = rest.substr(0, comma);
+    rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos) throw InputError(flag, "slide parameter '" + kv + "' has no '='");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (key == "res") {
+      if (!parse_long(value, res) || res < 8 || res > 4096)
+        throw InputError(flag, "slide 'res' must be an integer in [8, 4096], got '" + value + "'");
+    } else if (name == "grid" && key == "amp") {
+      if (!parse_double(value, amp) || amp < 0.0 || amp > 1.0)
+        throw InputError(flag, "slide 'amp' must be a number in [0, 1], got '" + value + "'");
+      have_amp = true;
+    } else if (name == "grid" && key == "freq") {
+      if (!parse_double(value, freq) || freq < 0.0 || freq > 1000.0)
+        throw InputError(flag, "slide 'freq' must be a number in [0, 1000], got '" + value + "'");
+      have_freq = true;
+    } else {
+      throw InputError(flag, "slide '" + name + "' has no parameter '" + key + "'");
+    }
+  }
+  if (name == "grid" && (!have_amp || !have_freq))
+    throw InputError(flag, "slide 'grid' needs both amp and freq (grid:amp=A,freq=F)");
+  slide.rgb = bake(int(res), float(amp), float(freq));
+  return slide;
+}
+
+}  // namespace shadowlab
