@@ -114,8 +114,11 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
 std::string sweep_table(const SweepResult& r) {
   std::string s;
   char line[512];
+  // The label column fits the longest label (at least 18 wide: "CSM 1024", "RT 1024spp").
+  int w = 18;
+  for (const SweepRow& row : r.rows) w = std::max(w, int(std::min<size_t>(row.label.size(), 200)));
   std::snprintf(line, sizeof line,
-                "%-18s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s\n", "method", "c10", "c50",
+                "%-*s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s\n", w, "method", "c10", "c50",
                 "c90", "dark", "lit", "acne", "noise", "detail", "shadow ms", "RP", "total");
   s += line;
   auto add = [&](const SweepRow& row, bool is_ref) {
@@ -134,8 +137,8 @@ std::string sweep_table(const SweepResult& r) {
       std::snprintf(total, sizeof total, "%.3f", m.total);
     }
     std::snprintf(line, sizeof line,
-                  "%-18s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s\n",
-                  row.label.c_str(), m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
+                  "%-*s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s\n",
+                  w, row.label.c_str(), m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
                   m.detail, time, rp, total);
     s += line;
   };
