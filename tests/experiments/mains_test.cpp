@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../test_paths.h"
+#include "core/image_io.h"
 #include "experiments/contact_sheet.h"
 
 namespace shadowlab {
@@ -160,6 +161,46 @@ std::pair<int, int> png_size(const std::string& path) {
                (uint32_t(uint8_t(b[i + 2])) << 8) | uint32_t(uint8_t(b[i + 3])));
   };
   return {be32(16), be32(20)};
+}
+
+// Projector flags (experiments/cli.h apply_projector_flags): each misuse is one line naming
+// its flag, exit code 2.
+TEST(Mains, ProjectorBadInputIsOneLineAndExitCodeTwo) {
+  const std::string out = test::binary_path("bad_projector_out");
+  const std::string base = "render --width 32 --height 24 --repeats 1 --out " + out;
+  expect_clear_error(base + " --technique csm --projector-pos 0,1,0", "--projector-pos");
+  expect_clear_error(base + " --technique csm --projector-fov 30", "--projector-fov");
+  expect_clear_error(base + " --technique csm --slide nosuch", "--slide");
+  expect_clear_error(base + " --technique psm", "--technique");
+  expect_clear_error(base + " --technique csm --slide spot --light-radius 0.1", "--light-radius");
+  expect_clear_error(base + " --technique csm --slide spot --projector-target 0.9,2.7,-0.4",
+                     "--projector-target");  // the default scene's light: target == position
+  expect_clear_error(base + " --technique csm --slide /no/such/slide.png", "/no/such/slide.png");
+}
+
+// A projector render writes the shaded image as linear EXR and sRGB PNG at the image size.
+TEST(Mains, RenderWithSlideWritesShadedImages) {
+  const std::string out = test::binary_path("render_projector_out");
+  std::filesystem::remove_all(out);
+  const ProcResult r = run("render --scene default --slide grid:amp=1,freq=4 --technique psm:res=128 "
+                           "--width 64 --height 48 --repeats 1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"mask.exr", "mask.png", "texel.exr", "timing.json", "shaded.exr", "shaded.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  EXPECT_EQ(png_size(out + "/shaded.png"), std::make_pair(64, 48));
+  const ImageF shaded = read_exr_rgb(out + "/shaded.exr");
+  ASSERT_EQ(shaded.width, 64);
+  ASSERT_EQ(shaded.height, 48);
+  // Linear values: non-negative; the projector lights some pixels above the ambient-only level
+  // (ambient 0.1 × albedo ≤ 0.1) and leaves others at it.
+  float lo = 1e30f, hi = -1e30f;
+  for (float v : shaded.data) {
+    ASSERT_GE(v, 0.0f);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  EXPECT_GT(hi, 0.2f);
+  EXPECT_LE(lo, 0.1f);
 }
 
 TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
