@@ -12,6 +12,7 @@
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
 #include "techniques/depth_quantize.h"
+#include "techniques/technique.h"
 
 using namespace shadowlab;
 
@@ -50,10 +51,19 @@ int main(int argc, char** argv) {
         {"bunny under the slide projector (spot), projector map", "bunny", "--psm",
          args.get("--psm", "psm:res=1024,pcf=3,bias=0.002")},
     };
+    // Both specs are checked before anything runs.
+    for (const Case& cs : cases) {
+      const TechniqueSpec spec = parse_technique_spec(cs.base, cs.flag);
+      const bool projector = std::string(cs.flag) == "--psm";
+      if (projector != (spec.name == "psm") || spec.name == "rt")
+        throw InputError(cs.flag, projector ? "needs a psm spec (the projector scene's map)"
+                                            : "needs a point-light map technique (csm, tsm, cvsm, ...)");
+      if (spec.params.count("depth")) throw InputError(cs.flag, "'depth' is what this experiment sweeps");
+      validate_technique(spec, cs.flag);
+    }
     for (const Case& cs : cases) {
       // One row per format: the spec with depth=..., at its own res.
       TechniqueSpec spec = parse_technique_spec(cs.base, cs.flag);
-      if (spec.params.count("depth")) throw InputError(cs.flag, "'depth' is what this experiment sweeps");
       if (!spec.params.count("res")) spec.params["res"] = "512";
       const int res = std::stoi(spec.params["res"]);
       spec.params.erase("res");

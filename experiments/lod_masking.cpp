@@ -153,7 +153,7 @@ void write_masking_csv(const std::string& path, const MaskingResult& r) {
   if (!f) throw InputError(path, "cannot write");
 }
 
-ImageF masking_contact_sheet(const MaskingResult& r) {
+ImageF masking_contact_sheet(const MaskingResult& r, int max_cell_width) {
   std::vector<std::string> rows, cols;
   std::vector<std::vector<const ImageF*>> cells;
   for (const MaskingLevel& L : r.levels) {
@@ -176,7 +176,7 @@ ImageF masking_contact_sheet(const MaskingResult& r) {
     cols.push_back(label);
   }
   ContactSheetStyle style;
-  style.max_cell_width = 320;
+  style.max_cell_width = max_cell_width;
   return contact_sheet(rows, cols, cells, nullptr, style);
 }
 

@@ -54,7 +54,7 @@ MaskingResult run_lod_masking(const Scene& scene, const MaskingConfig& config);
 std::string masking_tables(const MaskingResult& result);
 void write_masking_csv(const std::string& path, const MaskingResult& result);
 // Contact sheet in the layout of the paper's Figures 6–9: one row per level, one column per
-// slide, shaded luminance.
-ImageF masking_contact_sheet(const MaskingResult& result);
+// slide, shaded luminance, cells box-downscaled to at most max_cell_width px.
+ImageF masking_contact_sheet(const MaskingResult& result, int max_cell_width = 256);
 
 }  // namespace shadowlab

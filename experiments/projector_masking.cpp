@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     defs.push_back({"--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)"});
     defs.push_back({"--repeats", "N", "timing repeats, median reported (default 3)"});
     defs.push_back({"--no-cache", "", "do not read or write the LOD / reference cache"});
+    defs.push_back({"--sheet-cell", "PX", "contact sheet cells at most PX wide (default 256)"});
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
       std::printf("%s", usage_text("projector_masking [flags]", defs).c_str());
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     c.repeats = a.get_int("--repeats", c.repeats, 1, 1000);
     c.cache_dir = a.has("--no-cache") ? "" : default_cache_dir();
     c.out_dir = a.get("--out", "out/projector_masking");
+    const int sheet_cell = a.get_int("--sheet-cell", 256, 16, 4096);
     const Scene scene = scene_from_args(a);
     make_output_dir(c.out_dir, "--out");
     const MaskingResult r = run_lod_masking(scene, c);
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
                 r.width, r.height, c.technique.c_str(), double(c.ambient), thread_count());
     std::printf("%s", masking_tables(r).c_str());
     write_masking_csv(c.out_dir + "/masking.csv", r);
-    write_png_grey(c.out_dir + "/contact_sheet.png", masking_contact_sheet(r));
+    write_png_grey(c.out_dir + "/contact_sheet.png", masking_contact_sheet(r, sheet_cell));
     std::printf("wrote %s/masking.csv, contact_sheet.png and every shaded image\n", c.out_dir.c_str());
     return 0;
   });

@@ -237,5 +237,38 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   EXPECT_EQ(markers, 4u);
 }
 
+TEST(Mains, ProjectorMaskingPrintsTablesAndSheet) {
+  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
+  const std::string out = test::binary_path("masking_out");
+  std::filesystem::remove(out + "/contact_sheet.png");
+  const ProcResult r = run("projector_masking --width 64 --height 48 --repeats 1 --levels 300 "
+                           "--slides 'spot;grid:amp=1,freq=15' --technique psm:res=256 --no-cache --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // One table per measure; the full mesh's row compares it with itself.
+  EXPECT_NE(r.out.find("SSIM against the full mesh"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("visible after contrast masking"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  full                     1.0000                 1.0000"), std::string::npos) << r.out;
+  for (const char* f : {"masking.csv", "contact_sheet.png", "full_spot.png", "300_grid_amp_1_freq_15.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  expect_clear_error("projector_masking --slides 'spot;stripes' --out " + out, "--slides");
+  expect_clear_error("projector_masking --scene default --out " + out, "--scene");
+  expect_clear_error("projector_masking --levels 0 --out " + out, "--levels");
+}
+
+TEST(Mains, DepthPrecisionPrintsEveryFormatOnBothScenes) {
+  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
+  const std::string out = test::binary_path("depth_out");
+  const ProcResult r = run("depth_precision --width 64 --height 48 --repeats 1 --spp 4 "
+                           "--csm csm:res=64 --psm psm:res=64 --no-cache --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* row : {"CSM:DEPTH=F32 64", "CSM:DEPTH=16 64", "CSM:DEPTH=8 64", "CSM:DEPTH=8CUBIC 64",
+                          "PSM:DEPTH=F32 64", "PSM:DEPTH=8CUBIC 64"})
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+  EXPECT_TRUE(std::filesystem::exists(out + "/default/sweep.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/projector/sweep.csv"));
+  expect_clear_error("depth_precision --csm csm:depth=8 --out " + out, "--csm");
+  expect_clear_error("depth_precision --psm tsm:res=64 --out " + out, "--psm");
+}
+
 }  // namespace
 }  // namespace shadowlab
