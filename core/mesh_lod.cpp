@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace shadowlab {
 namespace {
@@ -24,25 +25,6 @@ constexpr char kMagic[8] = {'S', 'L', 'L', 'O', 'D', 'M', 'S', '1'};
 // magic, u32 version, u64 key, u32 vertex count, u32 index count, u32 has-uvs.
 constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + 3 * 4;
 constexpr uint32_t kNoVertex = ~0u;  // meshoptimizer's remap value of an unused vertex
-
-// FNV-1a, 64 bit (the same hash as the reference cache).
-struct Fnv1a {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) {
-      h ^= p[i];
-      h *= 0x100000001b3ull;
-    }
-  }
-  void u64(uint64_t v) { bytes(&v, sizeof v); }
-  // Sized arrays: the length goes first so that concatenations cannot collide.
-  template <class T>
-  void array(const std::vector<T>& v) {
-    u64(v.size());
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
-  }
-};
 
 uint64_t lod_hash(const Mesh& mesh, size_t target_triangles) {
   Fnv1a h;

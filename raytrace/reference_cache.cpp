@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"
 
@@ -21,35 +22,6 @@ namespace {
 constexpr char kMagic[8] = {'S', 'L', 'R', 'E', 'F', 'M', 'K', '1'};
 constexpr size_t kKeyLength = 16;
 constexpr size_t kHeaderBytes = sizeof(kMagic) + kKeyLength + 4 * sizeof(uint32_t);
-
-// FNV-1a, 64 bit.
-struct Fnv1a {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) {
-      h ^= p[i];
-      h *= 0x100000001b3ull;
-    }
-  }
-  void u64(uint64_t v) { bytes(&v, sizeof v); }
-  void f32(float v) { bytes(&v, sizeof v); }
-  void v2(const vec2& v) {
-    f32(v.x);
-    f32(v.y);
-  }
-  void v3(const vec3& v) {
-    f32(v.x);
-    f32(v.y);
-    f32(v.z);
-  }
-  // Sized arrays: the length goes first so that concatenations cannot collide.
-  template <class T>
-  void array(const std::vector<T>& v) {
-    u64(v.size());
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
-  }
-};
 
 std::string hex16(uint64_t v) {
   char buf[17];
