@@ -59,10 +59,21 @@ void validate_scene(const Scene& scene, const std::string& where) {
       throw InputError(where, "mesh '" + m.name + "' uv count differs from vertex count");
     if (m.material < 0 || size_t(m.material) >= scene.materials.size())
       throw InputError(where, "mesh '" + m.name + "' has no valid material");
+    if (scene.materials[size_t(m.material)].alpha_texture >= 0 && m.uvs.empty() &&
+        m.triangle_count() > 0)
+      throw InputError(where, "mesh '" + m.name + "' uses the alpha-textured material '" +
+                                  scene.materials[size_t(m.material)].name +
+                                  "' but has no texture coordinates");
   }
-  for (const Material& mat : scene.materials)
+  for (const Material& mat : scene.materials) {
     if (mat.alpha_texture >= int(scene.textures.size()))
       throw InputError(where, "material '" + mat.name + "' refers to a missing texture");
+    if (mat.alpha_texture >= 0 && (scene.textures[size_t(mat.alpha_texture)].channels != 4 ||
+                                   scene.textures[size_t(mat.alpha_texture)].empty()))
+      throw InputError(where, "material '" + mat.name + "': its alpha texture is not a non-empty RGBA image");
+    if (!(mat.alpha_cutoff >= 0.0f && mat.alpha_cutoff <= 1.0f))
+      throw InputError(where, "material '" + mat.name + "': alpha cutoff must lie in [0, 1]");
+  }
   const PointLight& l = scene.light;
   if (!is_finite(l.position) || !std::isfinite(l.radius) || l.radius < 0.0f)
     throw InputError(where, "light position must be finite and radius >= 0");

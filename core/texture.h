@@ -49,6 +49,14 @@ ImageF texture_to_linear_rgba(const Texture8& tex);
 // v up (see the top of this file). Non-finite coordinates read texel (0, 0) of the wrap cell.
 float sample_alpha(const ImageF& rgba, vec2 uv);
 
+// Texture coordinate at barycentrics (b1, b2) of triangle `tri` (3 vertex indices) of a mesh
+// with per-vertex `uvs`: (1 − b1 − b2)·uv0 + b1·uv1 + b2·uv2, in this order, the one
+// interpolation of the rasterizer (perspective-correct barycentrics) and of Embree's filters
+// (its hit u, v), so both read the same texel for the same surface point.
+inline vec2 barycentric_uv(const vec2* uvs, const uint32_t* tri, float b1, float b2) {
+  return (1.0f - b1 - b2) * uvs[tri[0]] + b1 * uvs[tri[1]] + b2 * uvs[tri[2]];
+}
+
 // The alpha test of both passes: a fragment survives iff alpha >= cutoff.
 inline bool alpha_test_passes(float alpha, float cutoff) { return alpha >= cutoff; }
 

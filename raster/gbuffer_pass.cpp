@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "raster/alpha_test.h"
 #include "raster/gbuffer_resolve_simd.h"
 #include "raster/pipeline.h"
 
@@ -52,8 +53,9 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   vis.with_ids = true;
   DepthOnlyShader shader;
   const mat4 view_proj = camera_projection(cam) * camera_view(cam);
-  const RasterStats st =
-      rasterize(scene_mesh_views(scene), view_proj, CullMode::None, w, h, vis, shader);
+  // Alpha-textured meshes discard their cut-out fragments (raster/alpha_test.h).
+  const RasterStats st = rasterize_alpha(scene_mesh_views(scene), scene_alpha(scene), view_proj,
+                                         CullMode::None, w, h, vis, shader);
   if (stats) *stats = st;
 
   // Resolve, once per pixel: intersect the pixel's camera ray with the visible triangle's

@@ -201,18 +201,19 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
 template <class Shader>
 concept HasFinishTile = requires(Shader& s, const DepthTarget& d) { s.finish_tile(0, 0, 0, 0, d); };
 
-// Rasterizes every binned triangle into `depth` (sized by the caller; each tile clears its own
-// pixels first, while they are in cache), tiles in parallel, each tile's triangles in
-// submission order.
+// Rasterizes every binned triangle into `depth` (sized by the caller; with `clear`, each tile
+// clears its own pixels first, while they are in cache; without, it draws over what an earlier
+// pass left), tiles in parallel, each tile's triangles in submission order.
 template <class Shader>
-void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shader) {
+void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shader,
+                     bool clear = true) {
   const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
   parallel_for(0, tiles, [&](size_t t) {
     const int tx = int(t % size_t(frame.tiles_x)), ty = int(t / size_t(frame.tiles_x));
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(frame.width, x0 + kTileSize);
     const int y1 = std::min(frame.height, y0 + kTileSize);
-    for (int y = y0; y < y1; ++y) {
+    for (int y = y0; y < y1 && clear; ++y) {
       std::fill_n(depth.inv_w.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0.0f);
       if (depth.with_ids)
         std::fill_n(depth.ids.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0xFFFFFFFFu);

@@ -60,6 +60,10 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
   for (size_t m = 0; m < meshes.size(); ++m) {
     first_triangle[m + 1] = first_triangle[m] + meshes[m].triangle_count;
     const MeshView& mesh = meshes[m];
+    if (mesh.skip) {
+      mesh_culled[m] = 1;
+      continue;
+    }
     if (mesh.has_bounds && box_outside_frustum(mesh.lo, mesh.hi, view_proj)) {
       mesh_culled[m] = 1;
       frame.stats.triangles_in += mesh.triangle_count;

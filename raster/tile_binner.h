@@ -22,6 +22,8 @@ struct MeshView {
   size_t triangle_count = 0;
   bool has_bounds = false;
   vec3 lo{0.0f}, hi{0.0f};            // world-space AABB of the positions (when has_bounds)
+  bool skip = false;                  // not drawn in this pass (its triangles still count in the
+                                      // global triangle index; not counted in the stats)
 };
 
 // True when the box [lo, hi] lies entirely outside one plane of the frustum of view_proj

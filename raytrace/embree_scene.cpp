@@ -51,8 +51,7 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
       // Embree's barycentrics: p = (1 - u - v) p0 + u p1 + v p2.
       const float u = RTCHitN_u(args->hit, n, i);
       const float v = RTCHitN_v(args->hit, n, i);
-      const uint32_t* tri = &g->indices[size_t(prim) * 3];
-      uv = (1.0f - u - v) * g->uvs[tri[0]] + u * g->uvs[tri[1]] + v * g->uvs[tri[2]];
+      uv = barycentric_uv(g->uvs.data(), &g->indices[size_t(prim) * 3], u, v);
     }
     // The one alpha lookup and test of core, shared with the rasterizer.
     if (!alpha_test_passes(sample_alpha(*g->texture, uv), g->cutoff)) args->valid[i] = 0;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "raster/alpha_test.h"
 #include "raster/pipeline.h"
 
 namespace shadowlab {
@@ -44,6 +45,7 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
   out.rendered.assign(n, false);
   out.triangles_submitted = out.triangles_culled = 0;
   const std::vector<MeshView> meshes = scene_mesh_views(scene);
+  const AlphaScene alpha = scene_alpha(scene);  // leaves (Krave) cast cut-out shadows
   // Faces one after the other; each face's binning and tiles are parallel loops.
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) {
@@ -55,8 +57,8 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
     target.inv_w.swap(out.distance[i]);
     target.resize(face.width, face.height);
     FaceRadialShader shader{&face, 1.0f / scene.light.far, target.inv_w.data()};
-    const RasterStats st = rasterize(meshes, face_view_proj(face, scene.light), CullMode::None,
-                                     face.width, face.height, target, shader);
+    const RasterStats st = rasterize_alpha(meshes, alpha, face_view_proj(face, scene.light),
+                                           CullMode::None, face.width, face.height, target, shader);
     target.inv_w.swap(out.distance[i]);
     out.rendered[i] = true;
     out.triangles_submitted += st.triangles_in;
