@@ -5,6 +5,7 @@
 
 #include "core/bunny_scene.h"
 #include "core/error.h"
+#include "core/foliage_scene.h"
 #include "core/mesh_builders.h"
 #include "core/obj_loader.h"
 
@@ -264,7 +265,7 @@ std::string known_names() {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"default", "plane", "room100k", "room1m", "bunny"};
+  return {"default", "plane", "room100k", "room1m", "bunny", "foliage"};
 }
 
 Scene make_builtin_scene(const std::string& name) {
@@ -279,6 +280,8 @@ Scene make_builtin_scene(const std::string& name) {
     s = make_room_scene(name, 128, 61, 128, 62);  // 12 + 32·15,360 + 32·15,872 = 999,436
   else if (name == "bunny")
     s = make_bunny_scene();
+  else if (name == "foliage")
+    s = make_foliage_scene();
   else
     throw InputError("--scene",
                      "unknown built-in scene '" + name + "' (known: " + known_names() + ")");

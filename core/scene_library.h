@@ -26,6 +26,8 @@ std::vector<std::string> builtin_scene_names();
 //              128 × 62 = 15,872): 999,436 triangles. See the .cpp for the layout.
 //   "bunny":   the Stanford bunny from the shared assets on a ground quad before a wall, with a
 //              posed slide projector (core/bunny_scene.h); needs the assets folder.
+//   "foliage": the palm tree and four plants (alpha-cut leaf cards) on a ground beside a wall,
+//              one hard point light above (core/foliage_scene.h); needs the assets folder.
 // Throws InputError("--scene", "unknown built-in scene 'x' (known: default, plane, ...)").
 Scene make_builtin_scene(const std::string& name);
 

@@ -90,7 +90,7 @@ vec3 ParsedArgs::get_vec3(const std::string& flag, const vec3& fallback) const {
 
 std::vector<FlagDef> common_flags() {
   return {
-      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny) or an .obj file (default: default)"},
+      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage) or an .obj file (default: default)"},
       {"--width", "W", "image width in pixels (default: the scene's camera, 1024)"},
       {"--height", "H", "image height in pixels (default: the scene's camera, 768)"},
       {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
@@ -99,6 +99,8 @@ std::vector<FlagDef> common_flags() {
       {"--eye", "X,Y,Z", "camera position, metres (default: the scene's)"},
       {"--target", "X,Y,Z", "camera target, metres (default: the scene's)"},
       {"--fov", "DEG", "vertical field of view in degrees (default: the scene's)"},
+      {"--alpha-cutoff", "C", "alpha-test cutoff of every alpha-textured material, [0, 1] (default: the material's, 0.5)"},
+      {"--no-alpha", "", "ignore alpha textures: every material opaque (to measure the alpha path's cost)"},
       {"--slide", "SLIDE", "make the light a slide projector casting SLIDE: spot, grid:amp=A,freq=F, or a .png/.exr file"},
       {"--projector-pos", "X,Y,Z", "projector position, metres (default: the scene's pose, else the light)"},
       {"--projector-target", "X,Y,Z", "point the projector aims at (default: the scene's pose, else the camera target)"},
@@ -202,6 +204,13 @@ Scene scene_from_args(const ParsedArgs& args) {
   cam.fov_y_deg = float(args.get_double("--fov", cam.fov_y_deg, 1.0, 170.0));
   scene.light.position = args.get_vec3("--light-pos", scene.light.position);
   scene.light.radius = float(args.get_double("--light-radius", scene.light.radius, 0.0, 1e4));
+  if (args.has("--alpha-cutoff") && args.has("--no-alpha"))
+    throw InputError("--alpha-cutoff", "conflicts with --no-alpha");
+  const float cutoff = float(args.get_double("--alpha-cutoff", 0.5, 0.0, 1.0));
+  for (Material& m : scene.materials) {
+    if (args.has("--no-alpha")) m.alpha_texture = -1;
+    if (args.has("--alpha-cutoff")) m.alpha_cutoff = cutoff;
+  }
   apply_projector_flags(args, scene);
   validate_scene(scene, is_file ? name : "--scene " + name);
   return scene;

@@ -1,0 +1,70 @@
+#include "core/foliage_scene.h"
+
+#include <algorithm>
+
+#include "core/assets.h"
+#include "core/mesh_builders.h"
+#include "core/obj_loader.h"
+
+namespace shadowlab {
+
+void append_scene(Scene& dst, const Scene& src, float scale, const vec3& offset) {
+  const int mat_base = int(dst.materials.size());
+  const int tex_base = int(dst.textures.size());
+  for (Material m : src.materials) {
+    if (m.alpha_texture >= 0) m.alpha_texture += tex_base;
+    dst.materials.push_back(m);
+  }
+  for (const ImageF& t : src.textures) dst.textures.push_back(t);
+  for (Mesh m : src.meshes) {
+    for (vec3& p : m.positions) p = p * scale + offset;
+    m.material += mat_base;
+    dst.meshes.push_back(std::move(m));
+  }
+}
+
+Scene make_foliage_scene(std::vector<std::string>* notes) {
+  const char* where = "--scene foliage";
+  Scene s;
+  s.name = "foliage";
+  add_grid_quad(new_mesh(s, "ground", vec3(0.55f, 0.5f, 0.42f)), vec3(-4.5f, 0.0f, -2.2f),
+                vec3(0.0f, 0.0f, 7.0f), vec3(9.0f, 0.0f, 0.0f), 12, 12);
+  add_grid_quad(new_mesh(s, "wall", vec3(0.75f)), vec3(-4.5f, 0.0f, -2.2f), vec3(9.0f, 0.0f, 0.0f),
+                vec3(0.0f, 4.5f, 0.0f), 12, 6);
+  struct Placement {
+    const char* asset;
+    vec3 at;
+  };
+  const Placement plants[] = {
+      {"palm_tree/palm_tree.obj", {-0.7f, 0.0f, -0.9f}},
+      {"plants/shrub.obj", {1.6f, 0.0f, -1.2f}},
+      {"plants/shrub_red.obj", {2.6f, 0.0f, 0.9f}},
+      {"plants/parviflora.obj", {0.5f, 0.0f, 1.0f}},
+      {"plants/fern3.obj", {-2.6f, 0.22f, 0.7f}},
+  };
+  for (const Placement& p : plants)
+    append_scene(s, load_obj_scene(shared_asset_path(p.asset, where), notes), 0.01f, p.at);
+
+  s.light.position = vec3(2.5f, 5.5f, 4.5f);
+  s.light.radius = 0.0f;
+  s.light.near = 0.05f;
+  const Bounds b = scene_bounds(s);
+  float reach = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+    reach = std::max(reach, glm::length(corner - s.light.position));
+  }
+  s.light.far = 1.02f * reach;
+
+  s.camera.eye = vec3(0.0f, 2.4f, 7.2f);
+  s.camera.target = vec3(0.0f, 1.5f, -0.6f);
+  s.camera.up = vec3(0.0f, 1.0f, 0.0f);
+  s.camera.fov_y_deg = 50.0f;
+  s.camera.near = 0.1f;
+  s.camera.far = 40.0f;
+  s.camera.width = 1024;
+  s.camera.height = 768;
+  return s;
+}
+
+}  // namespace shadowlab
