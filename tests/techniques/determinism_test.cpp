@@ -4,6 +4,8 @@
 #include <cstring>
 
 #include "core/parallel.h"
+#include "core/scene_library.h"
+#include "test_paths.h"
 #include "test_scenes.h"
 
 namespace shadowlab {
@@ -46,6 +48,31 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
       EXPECT_TRUE(same_bytes(outs[0].family[k].texels.data, outs[i].family[k].texels.data)) << k;
     }
   }
+}
+
+// Alpha discard (foliage) and the projector path, at 1, 2 and 7 threads.
+TEST(Determinism, FoliageAndProjectorAreThreadCountIndependent) {
+  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
+  const Scene foliage = test::small_scene("foliage", 160, 120);
+  Scene bunny = test::small_scene("bunny", 160, 120);
+  Projector p = bunny.projector;
+  p.slide = make_slide("grid:amp=1,freq=4", "test");
+  set_projector(bunny, p, "test");
+  std::vector<std::vector<std::vector<float>>> outs;
+  for (int threads : {1, 2, 7}) {
+    set_thread_count(threads);
+    std::vector<std::vector<float>> o;
+    const GBuffer g = render_gbuffer(foliage);
+    o.push_back(std::vector<float>(g.depth));
+    for (const char* spec : {"csm:res=256,pcf=3", "tsm:res=128", "cvsm:res=128"})
+      o.push_back(test::run(spec, foliage, g).mask.data);
+    const GBuffer gb = render_gbuffer(bunny);
+    o.push_back(test::run("psm:res=256,pcf=3,depth=8cubic", bunny, gb).mask.data);
+    outs.push_back(std::move(o));
+  }
+  set_thread_count(2);
+  for (size_t i = 1; i < outs.size(); ++i)
+    for (size_t k = 0; k < outs[0].size(); ++k) EXPECT_TRUE(same_bytes(outs[0][k], outs[i][k])) << k;
 }
 
 }  // namespace
