@@ -26,13 +26,6 @@ std::array<float, 256> make_srgb_table() {
   return t;
 }
 
-// Wraps a texture coordinate into [0, 1); non-finite values become 0.
-float wrap01(float t) {
-  if (!std::isfinite(t)) return 0.0f;
-  const float f = t - std::floor(t);
-  return f < 1.0f ? f : 0.0f;  // t - floor(t) can round up to 1 for tiny negative t
-}
-
 }  // namespace
 
 Texture8 load_texture8(const std::string& path) {
@@ -85,14 +78,5 @@ ImageF texture_to_linear_rgba(const Texture8& tex) {
   return img;
 }
 
-float sample_alpha(const ImageF& rgba, vec2 uv) {
-  SL_CHECK(rgba.channels == 4 && !rgba.empty());
-  const int w = rgba.width, h = rgba.height;
-  int x = int(wrap01(uv.x) * float(w));
-  int row_from_bottom = int(wrap01(uv.y) * float(h));
-  if (x >= w) x = w - 1;
-  if (row_from_bottom >= h) row_from_bottom = h - 1;
-  return rgba.at(x, h - 1 - row_from_bottom, 3);
-}
 
 }  // namespace shadowlab

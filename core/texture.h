@@ -6,6 +6,7 @@
 // the file). OBJ texture coordinates have v pointing up, so uv (0, 0) is the bottom-left corner
 // of the image and uv (1, 1) the top-right one. Lookups wrap (repeat) and take the nearest
 // texel: texel column floor(frac(u) * W), texel row (from the bottom) floor(frac(v) * H).
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,9 +46,27 @@ float srgb8_to_linear(uint8_t code);
 // as stored (alpha is never gamma-decoded).
 ImageF texture_to_linear_rgba(const Texture8& tex);
 
+// t − floor(t) in [0, 1); non-finite t gives 0. Inline and libm-free (the alpha test runs per
+// fragment): for |t| >= 2^23 every float is an integer, so the fraction is 0; below that,
+// truncation corrected for negative non-integers is exactly floor(t).
+inline float wrap01(float t) {
+  if (!(std::fabs(t) < 8388608.0f)) return 0.0f;  // also NaN and ±inf
+  const float tr = float(int(t));
+  const float f = t - (tr > t ? tr - 1.0f : tr);
+  return f < 1.0f ? f : 0.0f;  // t − floor(t) can round up to 1 for tiny negative t
+}
+
 // Alpha of an RGBA ImageF (channel 3) at texture coordinate uv: nearest texel, repeat wrap,
 // v up (see the top of this file). Non-finite coordinates read texel (0, 0) of the wrap cell.
-float sample_alpha(const ImageF& rgba, vec2 uv);
+// The image must be a non-empty 4-channel one (validate_scene checks every alpha texture).
+inline float sample_alpha(const ImageF& rgba, vec2 uv) {
+  const int w = rgba.width, h = rgba.height;
+  int x = int(wrap01(uv.x) * float(w));
+  int row_from_bottom = int(wrap01(uv.y) * float(h));
+  if (x >= w) x = w - 1;
+  if (row_from_bottom >= h) row_from_bottom = h - 1;
+  return rgba.data[(size_t(3) * size_t(h) + size_t(h - 1 - row_from_bottom)) * size_t(w) + size_t(x)];
+}
 
 // Texture coordinate at barycentrics (b1, b2) of triangle `tri` (3 vertex indices) of a mesh
 // with per-vertex `uvs`: (1 − b1 − b2)·uv0 + b1·uv1 + b2·uv2, in this order, the one
