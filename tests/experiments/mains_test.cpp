@@ -237,6 +237,13 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   EXPECT_EQ(markers, 4u);
 }
 
+TEST(Mains, AlphaFlagsAreChecked) {
+  const std::string out = test::binary_path("alpha_flags_out");
+  expect_clear_error("render --technique csm --alpha-cutoff 1.5 --out " + out, "--alpha-cutoff");
+  expect_clear_error("render --technique csm --alpha-cutoff -0.1 --out " + out, "--alpha-cutoff");
+  expect_clear_error("render --technique csm --alpha-cutoff 0.5 --no-alpha --out " + out, "--alpha-cutoff");
+}
+
 TEST(Mains, ProjectorMaskingPrintsTablesAndSheet) {
   if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const std::string out = test::binary_path("masking_out");
