@@ -48,13 +48,7 @@ Scene make_foliage_scene(std::vector<std::string>* notes) {
   s.light.position = vec3(2.5f, 5.5f, 4.5f);
   s.light.radius = 0.0f;
   s.light.near = 0.05f;
-  const Bounds b = scene_bounds(s);
-  float reach = 0.0f;
-  for (int i = 0; i < 8; ++i) {
-    const vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
-    reach = std::max(reach, glm::length(corner - s.light.position));
-  }
-  s.light.far = 1.02f * reach;
+  s.light.far = 1.02f * farthest_corner_distance(scene_bounds(s), s.light.position);
 
   s.camera.eye = vec3(0.0f, 2.4f, 7.2f);
   s.camera.target = vec3(0.0f, 1.5f, -0.6f);

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 
@@ -86,8 +87,10 @@ std::vector<vec2> welded_uvs(const Mesh& mesh, const std::vector<uint32_t>& rema
 }
 
 void put_bytes(std::vector<char>& out, const void* data, size_t n) {
-  const char* p = static_cast<const char*>(data);
-  out.insert(out.end(), p, p + n);
+  // resize + memcpy, not insert: GCC 12 warns falsely (-Wstringop-overflow) on the insert.
+  const size_t at = out.size();
+  out.resize(at + n);
+  if (n > 0) std::memcpy(out.data() + at, data, n);
 }
 template <class T>
 void put(std::vector<char>& out, T v) {
@@ -160,6 +163,10 @@ void store_lod(const std::string& dir, const std::string& path, uint64_t key, co
   SL_CHECK(lod.uvs.empty() || lod.uvs.size() == lod.positions.size());
   SL_CHECK_LE(lod.indices.size(), size_t(UINT32_MAX));  // counts are stored as u32
   std::vector<char> buf;
+  // The whole file at once.
+  buf.reserve(kHeaderBytes + sizeof(uint64_t) +
+              lod.positions.size() * 2 * sizeof(vec3) + lod.uvs.size() * sizeof(vec2) +
+              lod.indices.size() * sizeof(uint32_t));
   put_bytes(buf, kMagic, sizeof kMagic);
   put<uint32_t>(buf, kMeshLodVersion);
   put<uint64_t>(buf, key);
@@ -174,29 +181,7 @@ void store_lod(const std::string& dir, const std::string& path, uint64_t key, co
   h.bytes(buf.data(), buf.size());
   put<uint64_t>(buf, h.h);
 
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the LOD cache folder: " + ec.message());
-  // Unique temporary name in the same folder (same file system, so rename is atomic).
-  static std::atomic<uint64_t> counter{0};
-  const std::string tmp = path + ".tmp." + std::to_string(uint64_t(::getpid())) + "." +
-                          std::to_string(counter.fetch_add(1));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (out) out.write(buf.data(), std::streamsize(buf.size()));
-    out.close();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw InputError(tmp, "cannot write the LOD cache file");
-    }
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw InputError(path, "cannot move the LOD cache file into place: " + ec.message());
-  }
+  write_file_atomically(dir, path, buf, "LOD cache file");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -21,6 +22,15 @@ Bounds scene_bounds(const Scene& scene) {
       b.hi = glm::max(b.hi, p);
     }
   return b;
+}
+
+float farthest_corner_distance(const Bounds& b, const vec3& from) {
+  float reach = 0.0f;
+  for (int i = 0; i < 8 && b.valid(); ++i) {
+    const vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+    reach = std::max(reach, glm::length(corner - from));
+  }
+  return reach;
 }
 
 void compute_vertex_normals(Mesh& mesh) {

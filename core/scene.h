@@ -76,6 +76,9 @@ struct Bounds {
   vec3 extent() const { return hi - lo; }
 };
 Bounds scene_bounds(const Scene& scene);
+// Distance from `from` to the farthest of the 8 corners of b (0 for invalid bounds): a light
+// range that covers every point of the box.
+float farthest_corner_distance(const Bounds& b, const vec3& from);
 
 // Fills missing per-vertex normals with area-weighted face normals.
 void compute_vertex_normals(Mesh& mesh);

@@ -351,12 +351,7 @@ void set_projector(Scene& scene, Projector projector, const std::string& where) 
   scene.projector = std::move(projector);
   scene.light.position = scene.projector.position;
   scene.light.radius = 0.0f;
-  const Bounds b = scene_bounds(scene);
-  float reach = 0.0f;
-  for (int i = 0; i < 8 && b.valid(); ++i) {
-    const vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
-    reach = std::max(reach, glm::length(corner - scene.light.position));
-  }
+  const float reach = farthest_corner_distance(scene_bounds(scene), scene.light.position);
   scene.light.far = std::max(scene.light.far, 1.02f * reach);
   scene.light.near = std::min(scene.light.near, 1e-3f * scene.light.far);
 }

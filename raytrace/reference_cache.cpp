@@ -11,6 +11,7 @@
 #include <fstream>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "raytrace/embree_scene.h"
@@ -158,9 +159,10 @@ void store_cached_reference(const std::string& dir, const std::string& key, cons
   if (!valid_key(key)) throw InputError(dir, "invalid reference cache key '" + key + "'");
   SL_CHECK_EQ(mask.data.size(), mask.pixel_count() * size_t(mask.channels));
 
-  std::vector<char> buf;
+  // Constructed from the magic, not inserted into an empty vector: GCC 12 warns falsely
+  // (-Wstringop-overflow) on that insert once it is inlined here.
+  std::vector<char> buf(kMagic, kMagic + sizeof kMagic);
   buf.reserve(kHeaderBytes + mask.data.size() * sizeof(float) + sizeof(uint64_t));
-  buf.insert(buf.end(), kMagic, kMagic + sizeof kMagic);
   buf.insert(buf.end(), key.begin(), key.end());
   put_u32(buf, kReferenceVersion);
   put_u32(buf, uint32_t(mask.width));
@@ -173,31 +175,7 @@ void store_cached_reference(const std::string& dir, const std::string& key, cons
   const char* sum = reinterpret_cast<const char*>(&h.h);
   buf.insert(buf.end(), sum, sum + sizeof h.h);
 
-  namespace fs = std::filesystem;
-  const std::string path = cached_reference_path(dir, key);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the reference cache folder: " + ec.message());
-
-  // Unique temporary name in the same folder (same file system, so rename is atomic).
-  static std::atomic<uint64_t> counter{0};
-  const std::string tmp = path + ".tmp." + std::to_string(uint64_t(::getpid())) + "." +
-                          std::to_string(counter.fetch_add(1));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (out) out.write(buf.data(), std::streamsize(buf.size()));
-    out.close();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw InputError(tmp, "cannot write the reference cache file");
-    }
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw InputError(path, "cannot move the reference cache file into place: " + ec.message());
-  }
+  write_file_atomically(dir, cached_reference_path(dir, key), buf, "reference cache file");
 }
 
 ImageF cached_reference_mask(const Scene& scene, const GBuffer& gbuffer, int spp, uint64_t seed,
