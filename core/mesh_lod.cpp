@@ -1,17 +1,14 @@
 #include "core/mesh_lod.h"
 
 #include <meshoptimizer.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
-#include "core/atomic_file.h"
+#include "core/cache_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 
@@ -106,14 +103,9 @@ T get(const char* p) {
 // Reads the cache file into `out` (positions, normals, uvs, indices only) when it exists and
 // passes every check; otherwise returns false.
 bool load_lod(const std::string& path, uint64_t key, Mesh& out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < std::streamoff(kHeaderBytes + sizeof(uint64_t))) return false;
-  in.seekg(0, std::ios::beg);
-  std::vector<char> buf(static_cast<size_t>(size));
-  if (!in.read(buf.data(), size)) return false;
+  std::vector<char> buf;
+  if (!read_file_bytes(path, kHeaderBytes + sizeof(uint64_t), buf)) return false;
+  const size_t size = buf.size();
 
   // Header.
   if (std::memcmp(buf.data(), kMagic, sizeof kMagic) != 0) return false;

@@ -31,6 +31,8 @@ long parse_long(const std::string& flag, const std::string& s) {
   return v;
 }
 
+}  // namespace
+
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::stringstream ss(s);
@@ -38,8 +40,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
   while (std::getline(ss, item, sep)) out.push_back(item);
   return out;
 }
-
-}  // namespace
 
 std::string ParsedArgs::get(const std::string& flag, const std::string& fallback) const {
   const auto it = values.find(flag);

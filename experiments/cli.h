@@ -29,6 +29,9 @@ struct ParsedArgs {
   vec3 get_vec3(const std::string& flag, const vec3& fallback) const;
 };
 
+// Splits s at every `sep` (a trailing separator adds no empty item).
+std::vector<std::string> split(const std::string& s, char sep);
+
 // The flags every experiment takes: --scene --width --height --threads --light-radius --out,
 // plus camera/light overrides (--eye --target --fov --light-pos) and --help.
 std::vector<FlagDef> common_flags();

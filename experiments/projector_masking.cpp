@@ -39,16 +39,7 @@ int main(int argc, char** argv) {
     std::vector<size_t> levels = {0};
     for (int t : a.get_int_list("--levels", {5000, 1000, 300}, 1, 100000000)) levels.push_back(size_t(t));
     c.levels = levels;
-    if (a.has("--slides")) {
-      c.slides.clear();
-      std::string rest = a.get("--slides", "");
-      size_t pos;
-      while ((pos = rest.find(';')) != std::string::npos) {
-        c.slides.push_back(rest.substr(0, pos));
-        rest = rest.substr(pos + 1);
-      }
-      c.slides.push_back(rest);
-    }
+    if (a.has("--slides")) c.slides = split(a.get("--slides", ""), ';');
     c.technique = a.get("--technique", c.technique);
     c.ambient = float(a.get_double("--ambient", c.ambient, 0.0, 1.0));
     c.repeats = a.get_int("--repeats", c.repeats, 1, 1000);

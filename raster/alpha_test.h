@@ -11,6 +11,7 @@
 // the second pass. Scenes without alpha textures take the single fast pass unchanged.
 // Ordering: opaque triangles come before every alpha-tested one; of two fragments at exactly
 // equal depth the earlier wins (rasterize_tile.h), so an opaque one wins such a tie.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -83,15 +84,7 @@ RasterStats rasterize_alpha(const std::vector<MeshView>& meshes, const AlphaScen
   AlphaDiscardShader<Shader> discard{&alpha, &shader};
   rasterize_frame(second, depth, discard, /*clear=*/false);
   RasterStats st = first.stats;
-  const RasterStats& b = second.stats;
-  st.triangles_in += b.triangles_in;
-  st.culled_frustum += b.culled_frustum;
-  st.culled_facing += b.culled_facing;
-  st.dropped_degenerate += b.dropped_degenerate;
-  st.dropped_nonfinite += b.dropped_nonfinite;
-  st.clipped += b.clipped;
-  st.setups += b.setups;
-  st.fragments += b.fragments;
+  add_stats(st, second.stats);
   return st;
 }
 

@@ -36,6 +36,18 @@ struct RasterStats {
   size_t fragments = 0;           // fragments that passed the depth test (filled by shaders' caller)
 };
 
+// Adds every count of s into `into` (chunks of one frame, passes over one target).
+inline void add_stats(RasterStats& into, const RasterStats& s) {
+  into.triangles_in += s.triangles_in;
+  into.culled_frustum += s.culled_frustum;
+  into.culled_facing += s.culled_facing;
+  into.dropped_degenerate += s.dropped_degenerate;
+  into.dropped_nonfinite += s.dropped_nonfinite;
+  into.clipped += s.clipped;
+  into.setups += s.setups;
+  into.fragments += s.fragments;
+}
+
 // Depth target: width × height values of 1/w, row-major, y down; 0 = nothing drawn. With
 // with_ids set it is also a visibility buffer: ids holds the submission index of the triangle
 // whose fragment was kept last at each pixel (0xFFFFFFFF where none), written by the

@@ -13,16 +13,6 @@ namespace {
 // balance two or more threads.
 constexpr size_t kChunkTriangles = 8192;
 
-void add_stats(RasterStats& into, const RasterStats& s) {
-  into.triangles_in += s.triangles_in;
-  into.culled_frustum += s.culled_frustum;
-  into.culled_facing += s.culled_facing;
-  into.dropped_degenerate += s.dropped_degenerate;
-  into.dropped_nonfinite += s.dropped_nonfinite;
-  into.clipped += s.clipped;
-  into.setups += s.setups;
-}
-
 }  // namespace
 
 bool box_outside_frustum(const vec3& lo, const vec3& hi, const mat4& view_proj) {

@@ -1,17 +1,13 @@
 #include "raytrace/reference_cache.h"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
-#include "core/atomic_file.h"
+#include "core/cache_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "raytrace/embree_scene.h"
@@ -117,14 +113,9 @@ std::string cached_reference_path(const std::string& dir, const std::string& key
 bool load_cached_reference(const std::string& dir, const std::string& key, ImageF& out) {
   if (dir.empty() || !valid_key(key)) return false;
   const std::string path = cached_reference_path(dir, key);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < std::streamoff(kHeaderBytes + sizeof(uint64_t))) return false;
-  in.seekg(0, std::ios::beg);
-  std::vector<char> buf(static_cast<size_t>(size));
-  if (!in.read(buf.data(), size)) return false;
+  std::vector<char> buf;
+  if (!read_file_bytes(path, kHeaderBytes + sizeof(uint64_t), buf)) return false;
+  const size_t size = buf.size();
 
   // Header.
   if (std::memcmp(buf.data(), kMagic, sizeof kMagic) != 0) return false;

@@ -1,4 +1,4 @@
-#include "core/atomic_file.h"
+#include "core/cache_file.h"
 
 #include <unistd.h>
 
@@ -36,6 +36,17 @@ void write_file_atomically(const std::string& dir, const std::string& path,
     fs::remove(tmp, ignored);
     throw InputError(path, "cannot move the " + what + " into place: " + ec.message());
   }
+}
+
+bool read_file_bytes(const std::string& path, size_t min_bytes, std::vector<char>& out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0 || size < std::streamoff(min_bytes)) return false;
+  in.seekg(0, std::ios::beg);
+  out.resize(static_cast<size_t>(size));
+  return bool(in.read(out.data(), size));
 }
 
 }  // namespace shadowlab
