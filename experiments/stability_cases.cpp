@@ -226,8 +226,11 @@ std::vector<StabilityRow> run_stability_cases() {
   // 5. A thin occluder: a pole 6 mm wide, 1.5-2.5 m from the light, about one texel of a 512
   //    cube face there (2/512 × 1.5 m = 5.9 mm per texel at the axis), over a floor 2 m below
   //    the light; the camera looks at its shadow 2.5-3.5 m out (a pixel is ~9 mm, the shadow
-  //    ~1.4 cm wide). Depth maps catch its shadow (mismatch <= 3%); filtered maps thin it, so
-  //    the bound is on the leak: mean visibility inside its shadow <= 0.9.
+  //    ~1.4 cm wide). The pole's shadow is the only shadow in view (1.7 % of the image), so a
+  //    bound on the mismatch alone cannot see the pole go missing; every row also bounds the
+  //    leak, the mean visibility inside the reference's shadow, which is 1 without the pole.
+  //    Measured leaks (2026-11-28): csm 0.00, tsm 0.20, cvsm 0.33, cesm 0.34, tvsm 0.57,
+  //    tesm 0.58 (filters thin a one-texel occluder; tetrahedral texels are coarser there).
   {
     Scene s = sized(make_builtin_scene("plane"));
     s.camera.eye = vec3(3.0f, 1.5f, 0.0f);
@@ -238,12 +241,16 @@ std::vector<StabilityRow> run_stability_cases() {
     s.meshes.back().name = "pole";
     add_cylinder(s.meshes.back(), vec3(1.5f, 0.0f, 0.0f), 0.003f, 1.95f, 12);
     const Prepared p = prepare(s);
-    for (const char* t : {"csm", "tsm"})
+    rows.push_back(measure(p, "thin_occluder", "1 texel", "csm:res=512", Check::Mismatch, 0.03,
+                           "mismatch <= 3%; leak in its shadow <= 0.1", 0.1));
+    rows.push_back(measure(p, "thin_occluder", "1 texel", "tsm:res=512", Check::Mismatch, 0.03,
+                           "mismatch <= 3%; leak in its shadow <= 0.4", 0.4));
+    for (const char* t : filtered) {
+      const bool cube = t[0] == 'c';
       rows.push_back(measure(p, "thin_occluder", "1 texel", std::string(t) + ":res=512",
-                             Check::Mismatch, 0.03, "mismatch <= 3%"));
-    for (const char* t : filtered)
-      rows.push_back(measure(p, "thin_occluder", "1 texel", std::string(t) + ":res=512",
-                             Check::ShadowLeak, 0.9, "mean visibility in its shadow <= 0.9"));
+                             Check::ShadowLeak, cube ? 0.5 : 0.75,
+                             cube ? "leak in its shadow <= 0.5" : "leak in its shadow <= 0.75"));
+    }
   }
 
   // 6. Every face boundary and corner: a closed 4 m box around an off-centre light, with

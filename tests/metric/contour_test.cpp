@@ -40,6 +40,49 @@ TEST(Contour, MaskOnHandMadeBlock) {
   }
 }
 
+TEST(Contour, BlockSpansTwoRows) {
+  // Columns all equal, rows [0, 0, 1, 1] from top to bottom: only the block of row 1 spans
+  // rows 1 and 2 = {0, 1}, which contains 0.1, 0.5 and 0.9; rows 0 ({0, 0}), 2 ({1, 1}) and the
+  // last row ({1}) contain none of them. A block reading one row only would find no contour.
+  ImageD b(3, 4, 1, 0.0);
+  for (int x = 0; x < 3; ++x) b.at(x, 2) = b.at(x, 3) = 1.0;
+  const ImageU8 bits = contour_bits(b, kContourLevels);
+  for (int x = 0; x < 3; ++x) {
+    EXPECT_EQ(bits.at(x, 0), 0) << "x " << x;
+    EXPECT_EQ(bits.at(x, 1), 0b111) << "x " << x;
+    EXPECT_EQ(bits.at(x, 2), 0) << "x " << x;
+    EXPECT_EQ(bits.at(x, 3), 0) << "x " << x;
+  }
+  // Corner block: a single 1 at (1, 1) of a 3×3 zero image is in the blocks with top-left
+  // (0, 0), (1, 0), (0, 1) and (1, 1), and in no other.
+  ImageD c(3, 3, 1, 0.0);
+  c.at(1, 1) = 1.0;
+  const ImageU8 m = contour_mask(c, 0.5);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(m.at(x, y), (x <= 1 && y <= 1) ? 1 : 0) << x << "," << y;
+}
+
+TEST(Contour, ShiftedHorizontalEdgeGivesShiftAsRmsDistance) {
+  // The vertical counterpart of ShiftedVerticalEdgeGivesShiftAsRmsDistance: a horizontal edge
+  // moved by d rows puts every reference contour pixel exactly |d| from the test contour.
+  const int w = 192, h = 256;
+  ASSERT_EQ(blur_kernel_size(w, h), 3);
+  auto horizontal_edge = [&](int edge) {
+    ImageF m(w, h, 1, 0.0f);
+    for (int y = edge; y < h; ++y)
+      for (int x = 0; x < w; ++x) m.at(x, y) = 1.0f;
+    return m;
+  };
+  const ImageD br = box_blur(horizontal_edge(100), 3);
+  for (const int d : {1, 4, -6}) {
+    const ImageD bt = box_blur(horizontal_edge(100 + d), 3);
+    for (const double level : kContourLevels)
+      EXPECT_NEAR(contour_distance_rms(contour_mask(bt, level), contour_mask(br, level)),
+                  std::abs(d), 1e-12)
+          << "shift " << d << " level " << level;
+  }
+}
+
 TEST(Contour, AllValuesEqualToLevelAreContour) {
   // The paper's corner case: a flat block exactly at the level is marked.
   const ImageU8 c = contour_mask(ImageD(4, 3, 1, 0.5), 0.5);

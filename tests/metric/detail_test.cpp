@@ -43,6 +43,27 @@ TEST(Detail, UnevenSharingAndPixelsWithoutTexel) {
   EXPECT_DOUBLE_EQ(detail_score(&t), 1.0 / std::sqrt(7.0));
 }
 
+TEST(Detail, IndicesEqualInTheirLow22BitsStayDistinct) {
+  // csm:res=1024 indices reach 6·1024² > 2^22, so texels of different faces can share their low
+  // 22 (or 11, or 21) bits. Three indices that differ only above bit 22, interleaved so that a
+  // sort on the low bits alone would leave equal keys apart: A on 3 pixels, B on 2, C on 1.
+  // Per-pixel counts 3,3,3,2,2,1: S_ratio = √((27 + 8 + 1)/6) = √6.
+  const uint32_t low = 0x2A5A5Au;  // some 22-bit pattern
+  const uint32_t A = low, B = low | (1u << 22), C = low | (5u << 22);
+  ImageU32 t(6, 1, 1);
+  const uint32_t order[6] = {A, B, A, C, B, A};
+  for (int x = 0; x < 6; ++x) t.at(x, 0) = order[x];
+  EXPECT_DOUBLE_EQ(texel_share_ratio(t), std::sqrt(6.0));
+  // Real csm:res=1024 indices: face 5's texel (x, y) and face 1's, 4·1024² apart.
+  const uint32_t face_texels = 1024u * 1024u;
+  ImageU32 u(4, 1, 1);
+  u.at(0, 0) = 5 * face_texels + 77;
+  u.at(1, 0) = 1 * face_texels + 77;
+  u.at(2, 0) = 5 * face_texels + 77;
+  u.at(3, 0) = 1 * face_texels + 77;
+  EXPECT_DOUBLE_EQ(texel_share_ratio(u), 2.0);  // two texels of two pixels each
+}
+
 TEST(Detail, NoTexelImageOrNoTexelPixelScoresOne) {
   EXPECT_EQ(detail_score(nullptr), 1.0);
   ImageU32 none(4, 4, 1, kNoTexel);

@@ -23,7 +23,8 @@ TEST(Agreement, FineCubeMapMatchesHardRayTracing) {
   size_t shadowed = 0;
   for (float v : rt.mask.data) shadowed += v < 0.5f;
   ASSERT_GT(shadowed, g.pixel_count() / 50) << "the default scene must show some shadow";
-  EXPECT_LT(mismatch_rate(csm.mask, rt.mask), 0.01);
+  // Measured 0.031 % (6 of 19200 pixels, all on shadow edges); bound about 3× that.
+  EXPECT_LT(mismatch_rate(csm.mask, rt.mask), 0.001);
   // A coarse map disagrees more: the test can tell resolutions apart.
   const ShadowResult coarse = test::run("csm:res=32", scene, g);
   EXPECT_GT(mismatch_rate(coarse.mask, rt.mask), mismatch_rate(csm.mask, rt.mask));

@@ -36,6 +36,15 @@ TEST(FaceMaps, UnoccludedPlaneIsLit) {
 // Fine maps agree with one Embree ray per pixel almost everywhere (a 1024 map gives several
 // texels per pixel of a 160×120 image: only shadow-edge pixels may differ), and a coarse map
 // disagrees more.
+// Bounds about 3× the measured mismatch (2026-11-28, 19200 pixels): tsm 0.063 %, cvsm 0.026 %,
+// tvsm 0.130 %, cesm 0.083 %, tesm 0.120 %.
+double bound_of(const std::string& name) {
+  if (name == "tsm") return 0.002;
+  if (name == "cvsm") return 0.001;
+  if (name == "cesm") return 0.0025;
+  return 0.004;  // tvsm, tesm
+}
+
 TEST(FaceMaps, FineMapsMatchHardRayTracing) {
   Scene scene = test::small_scene("default", 160, 120);
   scene.light.radius = 0.0f;
@@ -44,7 +53,7 @@ TEST(FaceMaps, FineMapsMatchHardRayTracing) {
   for (const char* name : kFamily) {
     const ShadowResult fine = test::run(std::string(name) + ":res=1024", scene, g);
     const ShadowResult coarse = test::run(std::string(name) + ":res=32", scene, g);
-    EXPECT_LT(mismatch_rate(fine.mask, rt.mask), 0.02) << name;
+    EXPECT_LT(mismatch_rate(fine.mask, rt.mask), bound_of(name)) << name;
     EXPECT_GT(mismatch_rate(coarse.mask, rt.mask), mismatch_rate(fine.mask, rt.mask)) << name;
     for (float v : fine.mask.data) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << name;
   }
