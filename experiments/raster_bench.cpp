@@ -10,7 +10,7 @@
 #include "experiments/cli.h"
 #include "raster/depth_kernels.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/cube_shadow_map.h"
+#include "techniques/light_map.h"
 
 using namespace shadowlab;
 
@@ -66,17 +66,18 @@ int main(int argc, char** argv) {
     std::printf("scene %s: %zu triangles, %d threads, cube faces %d², camera %dx%d, cull %s, %d repeats, %s depth kernel\n",
                 scene.name.c_str(), scene.triangle_count(), thread_count(), res, scene.camera.width,
                 scene.camera.height, cull_name.c_str(), repeats, depth_kernel_name());
-    CubeShadowMap map;
-    std::array<bool, kCubeFaces> all;
-    all.fill(true);
-    auto cube = [&] { render_cube_map(scene, all, res, map, nullptr, nullptr, cull); };
+    // csm's pipeline stages with every face needed: render (stage 3) and the pcf=1 lookup.
+    MapParams p = default_map_params(FaceLayoutKind::Cube, MapFilter::Depth);
+    p.res = res;
+    LightMap map;
+    map.layout = map_layout(p, scene);
+    const std::vector<bool> all(map.layout.faces.size(), true);
+    auto cube = [&] { render_face_distances(scene, map.layout, all, map.dist, cull); };
     GBuffer g;
     auto gbuffer = [&] { render_gbuffer(scene, g); };
-    CubeShadowParams p;
-    p.res = res;
     ImageF mask;
     ImageU32 texels;
-    auto lookup = [&] { lookup_cube_map(scene, g, map, p, mask, &texels); };
+    auto lookup = [&] { lookup_light_map(scene, g, p, map, mask, &texels); };
     if (want("cube")) print("depth-only cube (6 faces)", time_it(repeats, cube));
     if (want("gbuffer")) print("camera GBuffer pass", time_it(repeats, gbuffer));
     if (want("lookup")) {

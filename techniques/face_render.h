@@ -1,7 +1,8 @@
 #pragma once
 // Renders the faces of a layout (techniques/light_faces.h) as depth-only passes and stores, per
 // texel, the radial distance from the light to the nearest surface through the texel centre,
-// normalised by the light range: |p - L| / far (+inf where the texel saw nothing).
+// normalised by the light range: |p - L| / far (+inf where the texel saw nothing). One renderer
+// for every layout and technique (the pipeline's stage 3, techniques/light_map.h).
 #include <vector>
 
 #include "core/scene.h"
@@ -14,11 +15,15 @@ struct FaceDistances {
   std::vector<std::vector<float>> distance;  // per face: texel_count() values, or empty if not rendered
   std::vector<bool> rendered;
   size_t triangles_submitted = 0;  // summed over rendered faces
-  size_t triangles_culled = 0;     // rejected before binning
+  size_t triangles_culled = 0;     // rejected before binning (outside a face's frustum)
+  size_t triangles_binned = 0;     // reached binning (after culling and clipping)
+  size_t texels_rendered = 0;      // texels of the rendered faces
 };
 
-// Renders the faces with needed[i] set (no face culling). Storage is reused across calls.
+// Renders the faces with needed[i] set. Storage is reused across calls. Faces are rendered
+// with no face culling unless `cull` says otherwise (benchmarks).
 void render_face_distances(const Scene& scene, const FaceLayout& layout,
-                           const std::vector<bool>& needed, FaceDistances& out);
+                           const std::vector<bool>& needed, FaceDistances& out,
+                           CullMode cull = CullMode::None);
 
 }  // namespace shadowlab

@@ -10,13 +10,22 @@
 
 namespace shadowlab {
 
+RayTracedParams parse_ray_traced(const TechniqueSpec& spec, const char* flag) {
+  SpecReader r(spec, flag);
+  RayTracedParams p;
+  p.spp = r.get_int("spp", p.spp, 1, 1 << 20);
+  p.hard = r.get_bool("hard", p.hard);
+  p.seed = r.get_int("seed", p.seed, 0, 1 << 30);
+  r.reject_unknown();
+  return p;
+}
+
 ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                             const RunOptions& options) {
-  SpecReader r(spec, options.flag);
-  const int spp = r.get_int("spp", 256, 1, 1 << 20);
-  const bool hard = r.get_bool("hard", false) || scene.light.radius <= 0.0f;
-  const uint64_t seed = mix64(scene.seed) ^ uint64_t(r.get_int("seed", 1, 0, 1 << 30));
-  r.reject_unknown();
+  const RayTracedParams p = parse_ray_traced(spec, options.flag);
+  const int spp = p.spp;
+  const bool hard = p.hard || scene.light.radius <= 0.0f;
+  const uint64_t seed = mix64(scene.seed) ^ uint64_t(p.seed);
 
   ShadowResult res;
   // The hard mask is keyed as spp 0 so it never collides with a soft one.
@@ -28,23 +37,18 @@ ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const
     res.notes = "reference from cache " + cached_reference_path(options.cache_dir, key);
     return res;
   }
-  std::vector<double> build_t, trace_t;
-  for (int rep = 0; rep < std::max(1, options.repeats); ++rep) {
-    auto t0 = std::chrono::steady_clock::now();
-    EmbreeScene rt(scene);
-    build_t.push_back(ms_since(t0));
-    t0 = std::chrono::steady_clock::now();
-    if (hard) {
-      res.mask = hard_visibility(rt, scene, gbuffer);
-    } else {
-      ProgressLine line("reference " + std::to_string(spp) + " spp",
-                        visibility_work_units(gbuffer.width, gbuffer.height), options.progress);
-      res.mask = soft_visibility(rt, scene, gbuffer, spp, seed, &line);
-    }
-    trace_t.push_back(ms_since(t0));
+  auto t0 = std::chrono::steady_clock::now();
+  EmbreeScene rt(scene);
+  res.map_ms = ms_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  if (hard) {
+    res.mask = hard_visibility(rt, scene, gbuffer);
+  } else {
+    ProgressLine line("reference " + std::to_string(spp) + " spp",
+                      visibility_work_units(gbuffer.width, gbuffer.height), options.progress);
+    res.mask = soft_visibility(rt, scene, gbuffer, spp, seed, &line);
   }
-  res.map_ms = median(build_t);
-  res.lookup_ms = median(trace_t);
+  res.lookup_ms = ms_since(t0);
   if (!key.empty()) store_cached_reference(options.cache_dir, key, res.mask);
   res.notes = hard ? "hard shadows, 1 ray per pixel"
                    : std::to_string(spp) + " rays per pixel on a sphere light of radius " +

@@ -10,6 +10,15 @@
 
 namespace shadowlab {
 
+struct RayTracedParams {
+  int spp = 256;
+  bool hard = false;
+  int seed = 1;
+};
+RayTracedParams parse_ray_traced(const TechniqueSpec& spec, const char* flag);
+
+// Computed once whatever options.repeats says: the reference is what the timed techniques are
+// compared with, not a timed technique (its times are one run's).
 ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                             const RunOptions& options);
 

@@ -1,43 +1,80 @@
 #include "techniques/technique.h"
 
+#include <functional>
+
 #include "core/error.h"
 #include "core/parallel.h"
-#include "techniques/cube_shadow_map.h"
-#include "techniques/face_map_technique.h"
+#include "techniques/light_map.h"
 #include "techniques/ray_traced.h"
 
 namespace shadowlab {
 namespace {
 
-using RunFn = ShadowResult (*)(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&);
-
+// One registry row. `parse` is the validation: it reads every key of a spec (InputError naming
+// the flag for an unknown or bad one); `run` parses again and runs.
 struct Entry {
-  const char* name;
-  const char* description;
-  RunFn run;
+  std::string name;
+  std::string description;  // what it is, then "keys: k=default,…"
+  std::function<void(const TechniqueSpec&, const char* flag)> parse;
+  std::function<ShadowResult(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&)> run;
 };
 
-// The registry: one line per technique.
-const Entry kTechniques[] = {
-    {"rt", "Embree ray tracing (reference): rt:spp=256,hard=0,seed=1", run_ray_traced},
-    {"csm", "cube shadow map: csm:res=512,pcf=1,bias=0.01,slope=1,normal=0,depth=f32", run_cube_shadow_map},
-    {"psm", "projector shadow map (one face, the slide projector's frustum; needs --slide): "
-            "psm:res=512,pcf=1,bias=0.01,slope=1,normal=0,depth=f32", run_face_map_technique},
-    {"tsm", "tetrahedral shadow map (4 faces in quadrants of one ~6·res² texture): "
-            "tsm:res=512,pcf=1,bias=0.01,slope=1,normal=0", run_face_map_technique},
-    {"cvsm", "cube variance shadow map: cvsm:res=512,blur=3,min_variance=1e-6,bleed=0,"
-             "maxdepth_eps=0,slope_moment=0,fp32=0,bias=0,slope=0,normal=0", run_face_map_technique},
-    {"tvsm", "tetrahedral variance shadow map (keys as cvsm)", run_face_map_technique},
-    {"cesm", "cube exponential shadow map: cesm:res=512,blur=3,c=200,bias=0,slope=0,normal=0",
-     run_face_map_technique},
-    {"tesm", "tetrahedral exponential shadow map (keys as cesm)", run_face_map_technique},
+struct LayoutName {
+  char letter;
+  FaceLayoutKind kind;
+  const char* what;
 };
+struct FilterName {
+  const char* suffix;
+  MapFilter filter;
+  const char* what;
+};
+
+// The naming rule (README "Techniques"): a layout letter + a filter. Every pair is a technique.
+const LayoutName kLayouts[] = {
+    {'c', FaceLayoutKind::Cube, "cube (6 faces of 90°)"},
+    {'t', FaceLayoutKind::Tetrahedron, "tetrahedral (4 faces in quadrants of one ~6·res² texture)"},
+    {'p', FaceLayoutKind::Projector, "projector (one face over the slide projector's frustum; needs --slide)"},
+};
+const FilterName kFilters[] = {
+    {"sm", MapFilter::Depth, "shadow map, depth compare with PCF"},
+    {"vsm", MapFilter::Variance, "variance shadow map"},
+    {"esm", MapFilter::Exponential, "exponential shadow map"},
+};
+
+std::vector<Entry> make_registry() {
+  std::vector<Entry> rows;
+  rows.push_back({"rt", "Embree ray tracing, the reference; keys: spp=256,hard=0,seed=1",
+                  [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
+                  run_ray_traced});
+  for (const LayoutName& l : kLayouts)
+    for (const FilterName& f : kFilters) {
+      const FaceLayoutKind layout = l.kind;
+      const MapFilter filter = f.filter;
+      rows.push_back(
+          {std::string(1, l.letter) + f.suffix,
+           std::string(f.what) + " on the " + l.what + " layout; keys: " + map_keys_text(layout, filter),
+           [layout, filter](const TechniqueSpec& s, const char* flag) {
+             parse_map_params(s, layout, filter, flag);
+           },
+           [layout, filter](const TechniqueSpec& s, const Scene& scene, const GBuffer& g,
+                            const RunOptions& o) {
+             return run_light_map(parse_map_params(s, layout, filter, o.flag), scene, g, o);
+           }});
+    }
+  return rows;
+}
+
+const std::vector<Entry>& registry() {
+  static const std::vector<Entry> rows = make_registry();
+  return rows;
+}
 
 const Entry& find(const TechniqueSpec& spec, const char* flag) {
-  for (const Entry& e : kTechniques)
+  for (const Entry& e : registry())
     if (spec.name == e.name) return e;
   std::string known;
-  for (const Entry& e : kTechniques) known += std::string(known.empty() ? "" : ", ") + e.name;
+  for (const Entry& e : registry()) known += (known.empty() ? "" : ", ") + e.name;
   throw InputError(flag, "unknown technique '" + spec.name + "' (known: " + known + ")");
 }
 
@@ -64,23 +101,19 @@ void gate_by_projector(const Scene& scene, const GBuffer& g, ShadowResult& r) {
 }
 
 void validate_technique(const TechniqueSpec& spec, const char* flag) {
-  const Entry& e = find(spec, flag);
-  if (e.run == run_cube_shadow_map) parse_cube_params(spec, flag);
-  if (e.run == run_face_map_technique) parse_face_map_params(spec, flag);
-  if (e.run == run_ray_traced) {
-    SpecReader r(spec, flag);
-    r.get_int("spp", 256, 1, 1 << 20);
-    r.get_bool("hard", false);
-    r.get_int("seed", 1, 0, 1 << 30);
-    r.reject_unknown();
-  }
+  find(spec, flag).parse(spec, flag);
 }
 
 std::vector<std::pair<std::string, std::string>> technique_list() {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const Entry& e : kTechniques) out.emplace_back(e.name, e.description);
+  for (const Entry& e : registry()) out.emplace_back(e.name, e.description);
   return out;
 }
 
+std::string technique_list_text() {
+  std::string s;
+  for (const auto& [name, description] : technique_list()) s += "  " + name + "  " + description + "\n";
+  return s;
+}
 
 }  // namespace shadowlab

@@ -2,6 +2,7 @@
 // The technique interface: every technique (shadow maps and the ray tracer alike) turns a
 // scene and its camera-pass GBuffer into a ShadowResult, evaluated at the GBuffer's surface
 // points. A registry maps a spec's name to an implementation.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,17 +13,39 @@
 
 namespace shadowlab {
 
+// Hardware-independent work of one run (one repeat): what a comparison across machines can
+// rely on when times move 2× between machine kinds (README "Work counts").
+struct WorkCounts {
+  uint64_t triangles_submitted = 0;  // triangle submissions, summed over the rendered faces
+  uint64_t triangles_binned = 0;     // of them, reached binning (after culling and clipping)
+  uint64_t texels_rendered = 0;      // texels of the rendered faces, guard bands included
+  uint64_t texels_filtered = 0;      // texel values the filter produced, summed over planes
+  uint64_t pixels_looked_up = 0;     // pixels that looked the map up (covered, facing the light)
+  uint64_t taps = 0;                 // map texels those lookups read (the filter's footprint)
+  uint64_t bytes_written = 0;        // map storage written: distances + stored filtered planes
+  uint64_t bytes_read = 0;           // map storage read by the lookups: taps × bytes per tap
+  double taps_per_pixel() const {
+    return pixels_looked_up ? double(taps) / double(pixels_looked_up) : 0.0;
+  }
+  uint64_t bytes_touched() const { return bytes_written + bytes_read; }
+};
+
 // What a technique returns. Mask convention (design.md §4): visibility in [0,1], 1 where no
 // geometry, 0 where the geometric normal faces away from the light.
 struct ShadowResult {
   ImageF mask;
   ImageU32 texels;            // texel index per pixel (kNoTexel where none); empty: no map
-  double map_ms = 0.0;        // median time of building the light-space maps
-  double lookup_ms = 0.0;     // median time of the per-pixel lookup / ray pass
+  // Median times in ms over the repeats, per phase of the light-map pipeline
+  // (techniques/light_map.h); the ray tracer reports its scene build as map_ms.
+  double faces_ms = 0.0;      // faces needed
+  double render_ms = 0.0;     // face render + store (quantize)
+  double filter_ms = 0.0;     // moment transform + blur (0 for depth compare)
+  double map_ms = 0.0;        // median of faces + render + filter
+  double lookup_ms = 0.0;     // per-pixel lookup / ray pass
+  WorkCounts work;
   int faces_total = 0;        // faces of the layout (6 for a cube map)
   int faces_needed = 0;       // faces some pixel's lookup touches
   int faces_rendered = 0;     // faces actually rendered (== needed)
-  size_t triangles_submitted = 0;  // summed over rendered faces
   size_t triangles_culled = 0;     // rejected before binning (outside a face's frustum)
   bool from_cache = false;    // the reference came from the disk cache (timings then 0)
   std::string notes;          // one-line human summary of what was skipped or reused
@@ -48,8 +71,11 @@ ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const 
 void gate_by_projector(const Scene& scene, const GBuffer& gbuffer, ShadowResult& result);
 // Checks a spec without running it (name and every parameter), throwing like run_technique.
 void validate_technique(const TechniqueSpec& spec, const char* flag);
-// Registered technique names with one-line descriptions, for --help.
+// Registered technique names with one-line descriptions (keys and defaults), for --help and
+// --list-techniques.
 std::vector<std::pair<std::string, std::string>> technique_list();
+// The registry as text: one line per technique, "name  description".
+std::string technique_list_text();
 
 // Shared rule for receivers: true when the pixel holds a surface that faces the light
 // (geometric N·L > 0).

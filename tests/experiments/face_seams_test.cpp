@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "experiments/stability_cases.h"
-#include "techniques/face_map_technique.h"
+#include "techniques/light_map.h"
 
 namespace shadowlab {
 namespace {
@@ -31,12 +31,14 @@ TEST(FaceMaps, NoSeamsAcrossFaceBoundariesAndCorners) {
 // face's edge and meets the neighbouring face's different depths) darkens boundary texels.
 TEST(FaceMaps, WithoutGuardBandTheBlurLeavesSeams) {
   const BoxRoom room = make_box_room();
-  FaceMapParams p = parse_face_map_params(parse_technique_spec("cvsm:res=256,blur=7", "t"), "t");
-  FaceMap map;
+  const MapParams p = parse_map_params(parse_technique_spec("cvsm:res=256,blur=7", "t"),
+                                       FaceLayoutKind::Cube, MapFilter::Variance, "t");
+  LightMap map;
   map.layout = cube_layout(p.res, 0);
-  build_face_map(room.scene, p, std::vector<bool>(6, true), map);
+  render_light_map(room.scene, p, std::vector<bool>(6, true), map);
+  filter_light_map(p, map);
   ImageF mask;
-  lookup_face_map(room.scene, room.g, p, map, mask, nullptr);
+  lookup_light_map(room.scene, room.g, p, map, mask, nullptr);
   float worst = 1.0f;
   for (size_t i = 0; i < room.g.pixel_count(); ++i)
     if (room.g.covered[i]) worst = std::min(worst, mask.data[i]);

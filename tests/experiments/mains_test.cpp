@@ -129,12 +129,14 @@ TEST(Mains, RenderIsIdenticalForOneTwoAndSevenThreads) {
 }
 
 // The scalar paths (SHADOWLAB_SCALAR=1) and the SIMD ones give identical files for a whole
-// render (camera pass, cube map, and the pcf=1 lookup), on the default scene and on an OBJ.
+// render (camera pass, map render, and the pcf=1 lookup kernels of the cube, tetrahedral and
+// projector layouts), on the default scene and on an OBJ.
 TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   std::vector<std::string> scenes = {"default"};
   if (!test::assets_dir().empty()) scenes.push_back(test::assets_dir() + "/bunny/stanford-bunny.obj");
   for (const std::string& scene : scenes)
-  for (const std::string spec : {"csm:res=512,pcf=3", "csm:res=256"}) {  // pcf=1: SIMD lookup
+  for (const std::string spec : {"csm:res=512,pcf=3", "csm:res=256", "tsm:res=256",
+                                 "tsm:res=256,slope=3,bias=0.002", "psm:res=256 --slide spot"}) {
     std::vector<std::string> masks, texels;
     for (const char* env : {"SHADOWLAB_SCALAR=1 ", "SHADOWLAB_SCALAR=0 "}) {
       const std::string out = test::binary_path(std::string("render_path_") + env[17]);

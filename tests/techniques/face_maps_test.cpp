@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "techniques/face_map_technique.h"
+#include "techniques/light_map.h"
 #include "test_scenes.h"
 
 namespace shadowlab {
@@ -66,8 +66,12 @@ TEST(FaceMaps, TexelIndicesAreInRangeWhereExpected) {
     const ShadowResult r = test::run(std::string(name) + ":res=64", scene, g);
     const bool tetra = name[0] == 't';
     // Texels per face including the guard band; faces: 4 quadrants of S = 2·79 or 6 cube faces.
-    const FaceMapParams p = parse_face_map_params(parse_technique_spec(std::string(name) + ":res=64", "t"), "t");
-    const FaceLayout L = tetra ? tetra_layout(64, face_map_guard(p)) : cube_layout(64, face_map_guard(p));
+    const MapFilter filter = name[1] == 's' ? MapFilter::Depth
+                             : name[1] == 'v' ? MapFilter::Variance : MapFilter::Exponential;
+    const MapParams p = parse_map_params(parse_technique_spec(std::string(name) + ":res=64", "t"),
+                                         tetra ? FaceLayoutKind::Tetrahedron : FaceLayoutKind::Cube,
+                                         filter, "t");
+    const FaceLayout L = tetra ? tetra_layout(64, map_guard(p)) : cube_layout(64, map_guard(p));
     const uint32_t limit = uint32_t(L.faces.size() * L.faces[0].texel_count());
     EXPECT_EQ(r.faces_total, tetra ? 4 : 6);
     for (size_t i = 0; i < g.pixel_count(); ++i) {

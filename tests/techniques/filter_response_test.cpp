@@ -7,9 +7,8 @@
 #include <cmath>
 
 #include "core/mesh_builders.h"
-#include "techniques/cube_shadow_map.h"
-#include "techniques/face_map_lookup.h"
-#include "techniques/face_map_technique.h"
+#include "techniques/light_map.h"
+#include "techniques/map_receiver.h"
 #include "test_scenes.h"
 
 namespace shadowlab {
@@ -59,18 +58,22 @@ double expected_pcf(double sx, int pcf, int edge) {
 const double kSx[] = {2.7, 3.3, 3.8, 4.05, 4.3, 4.5, 4.95, 5.6};
 
 TEST(FilterResponse, CubeMapPcfWeightsOverAStepEdge) {
+  // csm's own mechanism: no guard band, taps beyond a face looked up in its neighbour.
   const Scene scene = empty_light_scene();
   const int res = 8, face = 3, edge = 4;  // face -Y
-  CubeShadowMap map;
-  map.res = res;
+  LightMap map;
+  MapParams p = default_map_params(FaceLayoutKind::Cube, MapFilter::Depth);
+  p.res = res;
+  p.bias = p.slope = 0.0f;
+  ASSERT_EQ(p.seams, SeamMode::Cross);
+  map.layout = map_layout(p, scene);
+  ASSERT_EQ(map.layout.faces[0].width, res);
   // Every face is empty (+inf, lit) but for the occluded columns of face -Y, so taps that cross
   // into a neighbouring face (pcf 5 at sx 5.6 reads column 8) count as lit, as analysed.
-  for (int f = 0; f < kCubeFaces; ++f) {
-    map.depth[f].assign(size_t(res * res), std::numeric_limits<float>::infinity());
-    map.rendered[f] = true;
-  }
+  map.dist.distance.assign(kCubeFaces, std::vector<float>(size_t(res * res), std::numeric_limits<float>::infinity()));
+  map.dist.rendered.assign(kCubeFaces, true);
   for (int y = 0; y < res; ++y)
-    for (int x = 0; x < edge; ++x) map.depth[face][size_t(y * res + x)] = 0.05f;
+    for (int x = 0; x < edge; ++x) map.dist.distance[face][size_t(y * res + x)] = 0.05f;
   std::vector<vec3> pts;
   for (double sx : kSx) {
     // Texel coordinates → face coordinates u = sx/res·2 − 1, v = 1 − sy/res·2; a receiver 2 m
@@ -78,17 +81,16 @@ TEST(FilterResponse, CubeMapPcfWeightsOverAStepEdge) {
     const vec3 dir = cube_face_direction(face, float(sx / res * 2.0 - 1.0), float(1.0 - 4.6 / res * 2.0));
     pts.push_back(2.0f * dir);
   }
+  // 16 pixels: the SIMD kernel (pcf=1) takes whole groups of 8.
+  for (double sx : kSx) pts.push_back(2.0f * cube_face_direction(face, float(sx / res * 2.0 - 1.0), 0.1f));
   const GBuffer g = receivers(pts, scene.light.position);
   for (int pcf : {1, 3, 5}) {
-    CubeShadowParams p;
-    p.res = res;
     p.pcf = pcf;
-    p.bias = p.slope = 0.0f;
     ImageF mask;
-    lookup_cube_map(scene, g, map, p, mask, nullptr);
+    lookup_light_map(scene, g, p, map, mask, nullptr);
     for (size_t i = 0; i < pts.size(); ++i) {
-      EXPECT_NEAR(mask.data[i], expected_pcf(kSx[i], pcf, edge), 5e-7)
-          << "pcf " << pcf << " sx " << kSx[i];
+      EXPECT_NEAR(mask.data[i], expected_pcf(kSx[i % 8], pcf, edge), 5e-7)
+          << "pcf " << pcf << " sx " << kSx[i % 8];
     }
   }
 }
@@ -97,13 +99,14 @@ TEST(FilterResponse, FaceMapPcfWeightsOverAStepEdgeOnEveryLayout) {
   const Scene scene = empty_light_scene();
   for (int pcf : {1, 3, 5}) {
     for (const bool tetra : {false, true}) {
-      FaceMapParams p;
-      p.layout = tetra ? FaceLayoutKind::Tetrahedron : FaceLayoutKind::Cube;
+      MapParams p = default_map_params(tetra ? FaceLayoutKind::Tetrahedron : FaceLayoutKind::Cube,
+                                       MapFilter::Depth);
+      p.seams = SeamMode::Guard;
       p.pcf = pcf;
       p.res = 16;
       p.bias = p.slope = 0.0f;
-      FaceMap map;
-      map.layout = tetra ? tetra_layout(p.res, face_map_guard(p)) : cube_layout(p.res, face_map_guard(p));
+      LightMap map;
+      map.layout = map_layout(p, scene);
       const int face = tetra ? 0 : 3;
       const LightFace& f = map.layout.faces[size_t(face)];
       // The edge and the receivers sit mid-face, in the face image's own texel coordinates.
@@ -124,7 +127,7 @@ TEST(FilterResponse, FaceMapPcfWeightsOverAStepEdgeOnEveryLayout) {
       }
       const GBuffer g = receivers(pts, scene.light.position);
       ImageF mask;
-      lookup_face_map(scene, g, p, map, mask, nullptr);
+      lookup_light_map(scene, g, p, map, mask, nullptr);
       for (size_t i = 0; i < pts.size(); ++i) {
         EXPECT_NEAR(mask.data[i], expected_pcf(sxs[i], pcf, edge), 1e-6)
             << (tetra ? "tetra" : "cube") << " pcf " << pcf << " sx " << sxs[i];
@@ -207,11 +210,11 @@ TEST(FilterResponse, TetrahedralTiesGoToTheLowerFace) {
   EXPECT_EQ(face_of(L, vec3(-1.0f, 0.0f, 1.0f)), 0);
   EXPECT_EQ(face_of(L, vec3(1.0f, 0.0f, -1.0f)), 1);
   // The lookup uses the same rule: a receiver on the tie direction lands in the lower face.
-  FaceMapParams p;
+  const MapParams p = default_map_params(FaceLayoutKind::Tetrahedron, MapFilter::Depth);
   PointLight light;
-  const Receiver r = make_receiver(L, light, p, 1.0f, vec3(0.0f, -2.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f));
+  const Receiver r = make_receiver(L, light, p, 1.0f, 0.1f, vec3(0.0f, -2.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f));
   EXPECT_EQ(r.face, 0);
-  const Receiver r2 = make_receiver(L, light, p, 1.0f, vec3(0.0f, 3.0f, 0.0f), vec3(0.0f, -1.0f, 0.0f));
+  const Receiver r2 = make_receiver(L, light, p, 1.0f, 0.1f, vec3(0.0f, 3.0f, 0.0f), vec3(0.0f, -1.0f, 0.0f));
   EXPECT_EQ(r2.face, 2);
 }
 

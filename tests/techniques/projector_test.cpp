@@ -8,7 +8,7 @@
 
 #include "core/mesh_builders.h"
 #include "core/slide.h"
-#include "techniques/cube_shadow_map.h"
+#include "techniques/light_map.h"
 #include "techniques/depth_quantize.h"
 #include "techniques/light_faces.h"
 #include "techniques/projector_shading.h"
@@ -193,7 +193,9 @@ TEST(ProjectorShadows, CubeMapIsGatedByTheFrustum) {
   // outside pixels; the zeros come from the gate.
   RunOptions opt;
   const ShadowResult ungated =
-      run_cube_shadow_map(parse_technique_spec("csm:res=256", "--technique"), scene, g, opt);
+      run_light_map(parse_map_params(parse_technique_spec("csm:res=256", "--technique"),
+                                     FaceLayoutKind::Cube, MapFilter::Depth, "--technique"),
+                    scene, g, opt);
   size_t outside_lit = 0;
   for (size_t i = 0; i < g.pixel_count(); ++i)
     outside_lit += g.covered[i] && clearly_outside(scene.projector, g.position[i], 1e-4) &&

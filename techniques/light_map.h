@@ -1,0 +1,52 @@
+#pragma once
+// The light-map pipeline: every shadow-map technique (csm, tsm, psm, the VSM and ESM families;
+// a layout × a filter, techniques/map_params.h) runs through the same stages, each timed:
+//   1. layout       face frusta, face of a direction, texel mapping, guard band (light_faces.h)
+//   2. faces        which faces some pixel's lookup touches; neighbours only for pixels whose
+//                   PCF footprint reaches past their face's edge (SeamMode::Cross)
+//   3. render       one radial-distance renderer for every layout (face_render.h)
+//   4. store        quantize (depth=) and the filter's own transform (moments, exponentials)
+//   5. filter       separable box blur (moment_filter.h)
+//   6. lookup       compare or reconstruct, with the bias modes (map_receiver.h), through the
+//                   SIMD kernels where they exist (their scalar loops are the oracle)
+#include <vector>
+
+#include "core/gbuffer.h"
+#include "core/scene.h"
+#include "techniques/face_render.h"
+#include "techniques/map_params.h"
+#include "techniques/moment_filter.h"
+#include "techniques/technique.h"
+
+namespace shadowlab {
+
+// A built map: the layout, the rendered distances and, for filtering techniques, the filtered
+// planes per face (VSM: mean + variance, or m1 + m2 in fp32 mode, and the max depth when
+// maxdepth_eps > 0; ESM: the log-space occluder term c·z in plane a).
+struct LightMap {
+  FaceLayout layout;
+  FaceDistances dist;
+  std::vector<std::vector<float>> a, b, max_depth;
+  FilterScratch scratch;  // reused by every face and every rebuild
+};
+
+// The layout of a technique's params (the projector's needs scene.projector).
+FaceLayout map_layout(const MapParams& p, const Scene& scene);
+// Faces the lookups of the covered, light-facing pixels touch; `looked_up` (optional) receives
+// the number of such pixels.
+std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
+                               const MapParams& p, size_t* looked_up = nullptr);
+// Renders the needed faces and stores them (quantized).
+void render_light_map(const Scene& scene, const MapParams& p, const std::vector<bool>& needed,
+                      LightMap& map);
+// Filters a rendered map (moment maps only; a no-op for depth compare).
+void filter_light_map(const MapParams& p, LightMap& map);
+// Looks every GBuffer pixel up in a built map.
+void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
+                      const LightMap& map, ImageF& mask, ImageU32* texels);
+
+// The whole pipeline with per-phase timings (medians of options.repeats) and work counts.
+ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer& gbuffer,
+                           const RunOptions& options);
+
+}  // namespace shadowlab

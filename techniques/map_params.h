@@ -1,0 +1,71 @@
+#pragma once
+// Parameters of every light-map technique: a layout × a filter (README "Techniques").
+//
+// A technique's name is a layout letter plus a filter: c (cube), t (tetrahedral), p (the slide
+// projector's one face) + sm (depth compare with PCF), vsm (variance), esm (exponential):
+// csm, tsm, psm, cvsm, tvsm, pvsm, cesm, tesm, pesm. One struct and one parser serve all of
+// them; the keys a filter does not use are errors.
+//
+// Shared keys: res (comparable cube edge N; psm: the map's height), bias (m), slope, normal,
+// depth (stored precision, techniques/depth_quantize.h). Depth compare: pcf, seams. Filters:
+// blur. VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment, fp32. ESM: c.
+#include <string>
+
+#include "techniques/depth_quantize.h"
+#include "techniques/light_faces.h"
+#include "techniques/technique_spec.h"
+
+namespace shadowlab {
+
+enum class MapFilter { Depth, Variance, Exponential };
+
+// How taps near a face's edge read their texels.
+//   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
+//          stays inside the face's own image (the only way for blurs, which run per face).
+//   Cross: no guard band; a tap beyond the face's image is looked up through its direction in
+//          the face that owns it. Depth compare only.
+enum class SeamMode { Guard, Cross };
+
+struct MapParams {
+  FaceLayoutKind layout = FaceLayoutKind::Cube;
+  MapFilter filter = MapFilter::Depth;
+  int res = 512;          // cube face edge N; the tetrahedral texture has ~6·N² texels;
+                          // projector: height N, width round(N × aspect), guard excluded
+  DepthFormat depth = DepthFormat::F32;  // stored precision, quantized before any filtering
+  // Bias modes, metres, applied to the receiver's radial distance before comparison:
+  float bias = 0.01f;     // constant
+  float slope = 1.0f;     // × texel size at the receiver × tan(angle to light) (tan <= 10) × filter reach
+  float normal = 0.0f;    // normal offset: lookup point moved along the geometric normal by
+                          // normal × texel size at the receiver × (1 - N·L)
+  int pcf = 1;            // depth: 1 = nearest texel, odd N >= 3 = N×N bilinear-weighted taps
+  SeamMode seams = SeamMode::Guard;  // depth: default Cross on the cube layout (csm's own
+                                     // mechanism, kept byte for byte), Guard elsewhere
+  int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)
+  double min_variance = 1e-6;  // VSM: variance floor, m² (1 mm standard deviation)
+  double bleed = 0.0;          // VSM: light-bleeding reduction, p -> linstep(bleed, 1, p)
+  double maxdepth_eps = 0.0;   // VSM (Krave): > 0 stores the footprint's max depth; a receiver
+                               // deeper than max + eps (m) is fully shadowed
+  bool slope_moment = false;   // VSM (Krave): M2 = d² + ¼((∂d/∂x)² + (∂d/∂y)²) per texel
+  bool moments_fp32 = false;   // VSM: fp32 moments (d, d²) filtered in float — the naive form,
+                               // kept to measure its cancellation; default: double filter,
+                               // stored as (mean, variance)
+  double c = 200.0;            // ESM exponent on normalised distance (|p - L| / far); the
+                               // log-space filter allows any c <= 700 (README: why 200)
+};
+
+// The defaults of a layout × filter before any key is read (bias and slope are 0 for the
+// filtering techniques: the filter itself absorbs a surface's own depth variation).
+MapParams default_map_params(FaceLayoutKind layout, MapFilter filter);
+// Parses and range-checks a spec for the given layout × filter (InputError names `flag` and
+// the key; unknown keys are errors).
+MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, MapFilter filter,
+                           const char* flag);
+// "key=default,…" of a layout × filter, for --list-techniques and --help.
+std::string map_keys_text(FaceLayoutKind layout, MapFilter filter);
+// Guard texels each face needs so that every tap and filter stays inside the face's image
+// (0 with SeamMode::Cross).
+int map_guard(const MapParams& p);
+// The filter's reach in texels that scales the slope bias: PCF (pcf + 1)/2; moment maps 1.
+float map_reach(const MapParams& p);
+
+}  // namespace shadowlab

@@ -1,0 +1,128 @@
+// The SIMD lookup kernels against their scalar oracle, byte for byte, at the comparison's
+// threshold: each receiver's own texel holds exactly the depth the scalar path computes for it
+// (make_receiver), so a kernel whose receiver depth differs by one ulp flips that receiver.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <random>
+
+#include "core/cpu_features.h"
+#include "techniques/light_map.h"
+#include "techniques/map_receiver.h"
+
+namespace shadowlab {
+namespace {
+
+struct Case {
+  Scene scene;
+  GBuffer g;
+};
+
+// n random receivers around a light at (0.3, 1.2, -0.4), range 15 m, with random normals facing
+// the light (some facing away, some uncovered), plus the tetrahedron's exact tie directions.
+Case random_case(int n, uint32_t seed, bool projector) {
+  Case c;
+  c.scene.materials.push_back(Material{});
+  c.scene.light.position = vec3(0.3f, 1.2f, -0.4f);
+  c.scene.light.far = 15.0f;
+  if (projector) {
+    Projector& pr = c.scene.projector;
+    pr.enabled = true;
+    pr.position = c.scene.light.position;
+    pr.direction = vec3(0.2f, -1.0f, 0.3f);
+    pr.up = vec3(0.0f, 0.0f, 1.0f);
+    pr.fov_y_deg = 70.0f;
+    pr.aspect = 1.3f;
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  c.g.resize(n, 1);
+  const vec3 ties[4] = {{0, -1, 0}, {0, 1, 0}, {-1, 0, 1}, {1, 0, -1}};
+  for (int i = 0; i < n; ++i) {
+    vec3 dir(u(rng), u(rng), u(rng));
+    if (i < 16) dir = ties[i % 4];
+    if (projector && i % 3 != 0) dir = vec3(0.2f, -1.0f, 0.3f) + 0.4f * vec3(u(rng), 0.0f, u(rng));
+    dir = glm::normalize(dir);
+    const float dist = 0.5f + 6.0f * (u(rng) + 1.0f);
+    const vec3 p = c.scene.light.position + dist * dir;
+    vec3 nrm = glm::normalize(-dir + 0.8f * vec3(u(rng), u(rng), u(rng)));
+    if (i % 17 == 5) nrm = -nrm;  // may face away
+    c.g.position[size_t(i)] = p;
+    c.g.normal[size_t(i)] = c.g.geo_normal[size_t(i)] = nrm;
+    c.g.covered[size_t(i)] = i % 23 != 7;
+  }
+  return c;
+}
+
+// The map: random stored depths, and each receiver's own texel set to its scalar depth.
+LightMap threshold_map(const Case& c, const MapParams& p, uint32_t seed) {
+  LightMap map;
+  map.layout = map_layout(p, c.scene);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const size_t nf = map.layout.faces.size();
+  map.dist.distance.resize(nf);
+  map.dist.rendered.assign(nf, true);
+  for (size_t f = 0; f < nf; ++f) {
+    map.dist.distance[f].resize(map.layout.faces[f].texel_count());
+    for (float& d : map.dist.distance[f]) d = u(rng);
+  }
+  const float inv_far = 1.0f / c.scene.light.far;
+  for (size_t i = 0; i < c.g.pixel_count(); ++i) {
+    if (!c.g.covered[i] || !faces_light(c.g, i, c.scene.light.position)) continue;
+    const Receiver r = make_receiver(map.layout, c.scene.light, p, map_reach(p), inv_far,
+                                     c.g.position[i], c.g.geo_normal[i]);
+    const size_t per_face = map.layout.faces[0].texel_count();
+    map.dist.distance[size_t(r.face)][r.texel - size_t(r.face) * per_face] = r.depth;
+  }
+  return map;
+}
+
+void lookup_with(const char* scalar, const Case& c, const MapParams& p, const LightMap& map,
+                 ImageF& mask, ImageU32& texels) {
+  setenv("SHADOWLAB_SCALAR", scalar, 1);
+  lookup_light_map(c.scene, c.g, p, map, mask, &texels);
+  unsetenv("SHADOWLAB_SCALAR");
+}
+
+TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  struct Config {
+    FaceLayoutKind layout;
+    float bias, slope;
+  };
+  for (const Config& cfg : {Config{FaceLayoutKind::Cube, 0.01f, 1.0f}, Config{FaceLayoutKind::Cube, 0.0f, 0.0f},
+                            Config{FaceLayoutKind::Tetrahedron, 0.01f, 1.0f},
+                            Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f},
+                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f}}) {
+    const bool projector = cfg.layout == FaceLayoutKind::Projector;
+    const Case c = random_case(4096, 7, projector);
+    MapParams p = default_map_params(cfg.layout, MapFilter::Depth);
+    p.res = 64;
+    p.bias = cfg.bias;
+    p.slope = cfg.slope;
+    const LightMap map = threshold_map(c, p, 11);
+    ImageF scalar_mask, simd_mask;
+    ImageU32 scalar_texels, simd_texels;
+    lookup_with("1", c, p, map, scalar_mask, scalar_texels);
+    lookup_with("0", c, p, map, simd_mask, simd_texels);
+    const std::string what = "layout " + std::to_string(int(cfg.layout)) + " slope " + std::to_string(cfg.slope);
+    ASSERT_EQ(scalar_mask.data.size(), simd_mask.data.size());
+    EXPECT_EQ(std::memcmp(scalar_mask.data.data(), simd_mask.data.data(), scalar_mask.data.size() * 4), 0) << what;
+    EXPECT_EQ(std::memcmp(scalar_texels.data.data(), simd_texels.data.data(), scalar_texels.data.size() * 4), 0) << what;
+    // Not vacuous: most looked-up receivers sit exactly on their threshold and are lit, and
+    // the random texels around them shadow others.
+    size_t lit = 0, looked = 0;
+    for (size_t i = 0; i < c.g.pixel_count(); ++i) {
+      if (scalar_texels.data[i] == kNoTexel) continue;
+      ++looked;
+      lit += scalar_mask.data[i] == 1.0f;
+    }
+    EXPECT_GT(looked, c.g.pixel_count() / 4) << what;
+    EXPECT_GT(lit, looked / 2) << what;
+  }
+}
+
+}  // namespace
+}  // namespace shadowlab
