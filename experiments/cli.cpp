@@ -15,6 +15,7 @@
 #include "core/parallel.h"
 #include "core/parse_number.h"
 #include "core/scene_library.h"
+#include "techniques/technique.h"
 
 namespace shadowlab {
 namespace {
@@ -107,7 +108,8 @@ std::vector<FlagDef> common_flags() {
       {"--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)"},
       {"--projector-aspect", "A", "projector slide width / height (default 1)"},
       {"--out", "DIR", "output folder"},
-      {"--help", "", "print this help"},
+      {"--help", "", "print this help (with the technique registry)"},
+      {"--list-techniques", "", "print every technique with its keys and defaults, then exit"},
   };
 }
 
@@ -155,6 +157,8 @@ std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& 
     if (left.size() < 26) left.resize(26, ' ');
     s += left + " " + d.help + "\n";
   }
+  s += "techniques (a layout letter c/t/p + a filter sm/vsm/esm; spec NAME:key=value,...):\n";
+  s += technique_list_text();
   return s;
 }
 
@@ -224,6 +228,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   try {
+    for (int i = 1; i < argc; ++i)
+      if (std::string(argv[i]) == "--list-techniques") {
+        std::printf("%s", technique_list_text().c_str());
+        return 0;
+      }
     return body(argc, argv);
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());

@@ -39,7 +39,7 @@ std::vector<FlagDef> common_flags();
 // Parses argv against `defs`; `max_positional` positional arguments are allowed.
 ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
                       size_t max_positional = 0);
-// Usage text: synopsis line, then one line per flag.
+// Usage text: synopsis line, one line per flag, then the technique registry.
 std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& defs);
 
 // Applies --threads, then builds the scene named by --scene (a built-in name or an .obj path)
@@ -52,7 +52,7 @@ Scene scene_from_args(const ParsedArgs& args);
 void apply_projector_flags(const ParsedArgs& args, Scene& scene);
 
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
-// other exception → exit code 1. Prints usage and exits 0 on --help.
+// other exception → exit code 1. --list-techniques anywhere prints the registry and exits 0.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);
 
 // Creates the folder (and parents) or throws InputError(flag, reason).

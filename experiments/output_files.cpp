@@ -1,5 +1,6 @@
 #include "experiments/output_files.h"
 
+#include <cstdio>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -15,11 +16,8 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
   write_exr_mask(base + "mask.exr", r.mask);
   write_png_grey(base + "mask.png", r.mask);
   if (!r.texels.empty()) write_exr_texels(base + "texel.exr", r.texels);
-  nlohmann::json j;
+  nlohmann::json j = timing_json(r);
   j["technique"] = technique;
-  j["map_ms"] = r.map_ms;
-  j["lookup_ms"] = r.lookup_ms;
-  j["shadow_ms"] = r.shadow_ms();
   j["camera_ms"] = camera_ms;
   j["faces_needed"] = r.faces_needed;
   j["faces_rendered"] = r.faces_rendered;
@@ -28,6 +26,45 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
   std::ofstream f(base + "timing.json");
   f << j.dump(2) << "\n";
   if (!f) throw InputError(base + "timing.json", "cannot write");
+}
+
+nlohmann::json timing_json(const ShadowResult& r) {
+  nlohmann::json j;
+  j["faces_ms"] = r.faces_ms;
+  j["render_ms"] = r.render_ms;
+  j["filter_ms"] = r.filter_ms;
+  j["map_ms"] = r.map_ms;
+  j["lookup_ms"] = r.lookup_ms;
+  j["shadow_ms"] = r.shadow_ms();
+  const WorkCounts& w = r.work;
+  j["work"] = {{"triangles_submitted", w.triangles_submitted},
+               {"triangles_binned", w.triangles_binned},
+               {"texels_rendered", w.texels_rendered},
+               {"texels_filtered", w.texels_filtered},
+               {"pixels_looked_up", w.pixels_looked_up},
+               {"taps", w.taps},
+               {"taps_per_pixel", w.taps_per_pixel()},
+               {"bytes_written", w.bytes_written},
+               {"bytes_read", w.bytes_read},
+               {"bytes_touched", w.bytes_touched()}};
+  return j;
+}
+
+const char* work_csv_header() {
+  return "faces_ms,render_ms,filter_ms,triangles_submitted,triangles_binned,texels_rendered,"
+         "texels_filtered,pixels_looked_up,taps_per_pixel,bytes_written,bytes_read";
+}
+
+std::string work_csv_values(const ShadowResult& r) {
+  const WorkCounts& w = r.work;
+  char b[512];
+  std::snprintf(b, sizeof b, "%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%.4f,%llu,%llu", r.faces_ms,
+                r.render_ms, r.filter_ms, (unsigned long long)w.triangles_submitted,
+                (unsigned long long)w.triangles_binned, (unsigned long long)w.texels_rendered,
+                (unsigned long long)w.texels_filtered, (unsigned long long)w.pixels_looked_up,
+                w.taps_per_pixel(), (unsigned long long)w.bytes_written,
+                (unsigned long long)w.bytes_read);
+  return b;
 }
 
 }  // namespace shadowlab

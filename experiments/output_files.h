@@ -3,6 +3,8 @@
 // texel.exr (UINT "texel", only when the technique has texels) and timing.json.
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "techniques/technique.h"
 
 namespace shadowlab {
@@ -10,5 +12,12 @@ namespace shadowlab {
 // Writes into dir with the given file-name prefix ("" → mask.exr, "csm_512_" → csm_512_mask.exr).
 void write_result_files(const std::string& dir, const std::string& prefix, const ShadowResult& r,
                         const std::string& technique, double camera_ms);
+
+// The per-phase times and work counts of a result, as written in timing.json and sweep.json:
+// {"faces_ms", "render_ms", "filter_ms", "map_ms", "lookup_ms", "shadow_ms", "work": {...}}.
+nlohmann::json timing_json(const ShadowResult& r);
+// CSV header fields and the values of the same columns (sweep.csv).
+const char* work_csv_header();
+std::string work_csv_values(const ShadowResult& r);
 
 }  // namespace shadowlab

@@ -31,11 +31,11 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 
 namespace {
 
-// Page layout, SVG px: a title line, a legend line, then two plot areas side by side with room
-// on their left for y tick labels and below for x tick labels and the axis title.
-constexpr double kWidth = 960.0, kHeight = 450.0;
+// Page layout, SVG px: a title line, a legend line, then two or three plot areas side by side
+// with room on their left for y tick labels and below for x tick labels and the axis title.
+constexpr double kPanelStep = 465.0, kHeight = 450.0;
 constexpr double kPlotTop = 78.0, kPlotHeight = 300.0, kPlotWidth = 370.0;
-constexpr double kPlotLeft[2] = {80.0, 545.0};
+constexpr double kPlotLeft[3] = {80.0, 80.0 + kPanelStep, 80.0 + 2.0 * kPanelStep};
 constexpr double kMarkerRadius = 4.5;
 constexpr double kRingRadius = 8.0;
 // Colour-blind-friendly-ish, distinct in grey print too; series beyond 8 reuse with a new shape.
@@ -81,7 +81,7 @@ std::string escape_xml(const std::string& text) {
   return out;
 }
 
-// Mapping of one panel's data to SVG px: x = log10(time) over whole decades, y linear.
+// Mapping of one panel's data to SVG px: x = log10(cost) over whole decades, y linear.
 struct Panel {
   double left = 0.0;          // plot area's left edge, px
   int decade_lo = 0;          // x axis spans 10^decade_lo .. 10^decade_hi ms
@@ -182,7 +182,7 @@ void marker(std::string& s, const char* cls, int shape, double x, double y, cons
 }
 
 // Frame, grid, ticks and axis titles of one panel.
-void draw_axes(std::string& s, const Panel& p, const char* y_title) {
+void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* x_title) {
   const double bottom = kPlotTop + kPlotHeight, right = p.left + kPlotWidth;
   add(s, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#fafafa\" "
          "stroke=\"#333\" stroke-width=\"1\"/>\n", p.left, kPlotTop, kPlotWidth, kPlotHeight);
@@ -218,8 +218,8 @@ void draw_axes(std::string& s, const Panel& p, const char* y_title) {
     add(s, "<text class=\"ytick\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" text-anchor=\"end\">%.*f</text>\n",
         p.left - 9.0, y + 4.0, decimals, v);
   }
-  add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\">shadow time (ms, log scale)</text>\n",
-      p.left + kPlotWidth / 2.0, bottom + 40.0);
+  add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\">%s</text>\n",
+      p.left + kPlotWidth / 2.0, bottom + 40.0, x_title);
   const double ty_x = p.left - 52.0, ty_y = kPlotTop + kPlotHeight / 2.0;
   add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\" "
          "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n", ty_x, ty_y, ty_x, ty_y, y_title);
@@ -236,17 +236,25 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
     series_of[i] = int(it - series.begin());
     if (it == series.end()) series.push_back(points[i].series);
   }
-  std::vector<double> times;
-  for (const PlotPoint& p : points) times.push_back(p.time_ms);
-  int decade_lo = 0, decade_hi = 1;
+  std::vector<double> times, megabytes;
+  bool any_bytes = false;
+  for (const PlotPoint& p : points) {
+    times.push_back(p.time_ms);
+    any_bytes = any_bytes || p.bytes > 0.0;
+    megabytes.push_back(p.bytes > 0.0 ? p.bytes * 1e-6 : std::nan(""));
+  }
+  int decade_lo = 0, decade_hi = 1, mb_lo = 0, mb_hi = 1;
   time_decades(times, decade_lo, decade_hi);
+  time_decades(megabytes, mb_lo, mb_hi);
+  const int panels = any_bytes ? 3 : 2;
+  const double width = 80.0 + double(panels) * kPanelStep - 50.0;  // 960 px for two panels
 
   std::string s;
   add(s, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-         "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\">\n", kWidth, kHeight, kWidth, kHeight);
-  add(s, "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#fff\"/>\n", kWidth, kHeight);
+         "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\">\n", width, kHeight, width, kHeight);
+  add(s, "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#fff\"/>\n", width, kHeight);
   add(s, "<text x=\"%.2f\" y=\"26\" font-size=\"16\" text-anchor=\"middle\">%s</text>\n",
-      kWidth / 2.0, escape_xml(title).c_str());
+      width / 2.0, escape_xml(title).c_str());
 
   // Legend: one entry per series, then the front's line and ring.
   double lx = kPlotLeft[0];
@@ -263,21 +271,23 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
       ly, kRingRadius);
   add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
 
-  for (int panel = 0; panel < 2; ++panel) {
+  for (int panel = 0; panel < panels; ++panel) {
     Panel p;
     p.left = kPlotLeft[panel];
-    p.decade_lo = decade_lo;
-    p.decade_hi = decade_hi;
-    // A point is in this panel only with a finite time and y; the rest get NaN (never on the front).
+    p.decade_lo = panel == 2 ? mb_lo : decade_lo;
+    p.decade_hi = panel == 2 ? mb_hi : decade_hi;
+    // A point is in this panel only with a finite cost and y; the rest get NaN (never on the front).
     std::vector<double> cost(points.size()), score(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
-      const double y = panel == 0 ? points[i].total : points[i].fidelity;
-      const bool ok = std::isfinite(points[i].time_ms) && std::isfinite(y);
-      cost[i] = ok ? points[i].time_ms : std::nan("");
+      const double y = panel == 1 ? points[i].fidelity : points[i].total;
+      const double x = panel == 2 ? megabytes[i] : points[i].time_ms;
+      const bool ok = std::isfinite(x) && std::isfinite(y);
+      cost[i] = ok ? x : std::nan("");
       score[i] = ok ? y : std::nan("");
     }
     score_range(score, p.y_lo, p.y_hi);
-    draw_axes(s, p, panel == 0 ? "total score" : "fidelity");
+    draw_axes(s, p, panel == 1 ? "fidelity" : "total score",
+              panel == 2 ? "map bytes touched (MB, log scale)" : "shadow time (ms, log scale)");
 
     // Front as a staircase in time order: best score reachable within a time budget.
     const std::vector<bool> front = pareto_front(cost, score);

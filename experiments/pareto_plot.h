@@ -1,6 +1,8 @@
 #pragma once
-// Quality-versus-cost plot of a sweep (issue 4): a self-contained SVG with two panels — total
-// score and fidelity against shadow time on a log axis — and the Pareto front of each panel.
+// Quality-versus-cost plot of a sweep: a self-contained SVG with two panels — total score and
+// fidelity against shadow time on a log axis — and, when the points carry work counts, a third:
+// total score against the map bytes touched (a cost that holds on any machine); the Pareto
+// front of each panel.
 #include <string>
 #include <vector>
 
@@ -12,7 +14,8 @@ struct PlotPoint {
   std::string series;    // technique name, e.g. "csm"; one colour and marker per series
   double time_ms = 0.0;  // shadow time (map + lookup), ms; <= 0 is drawn at kPlotMinTimeMs
   double total = 0.0;    // total score, left panel's y
-  double fidelity = 0.0; // fidelity score, right panel's y
+  double fidelity = 0.0; // fidelity score, middle panel's y
+  double bytes = 0.0;    // map bytes touched (written + read, WorkCounts); <= 0: not in panel 3
 };
 
 // Smallest time the log axis shows, ms: times <= 0 (a cached reference) are clamped to it.
@@ -24,7 +27,8 @@ constexpr double kPlotMinTimeMs = 1e-3;
 // nothing. cost and score must have the same size.
 std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vector<double>& score);
 
-// The SVG text: left panel y = total, right panel y = fidelity, x = time_ms (log, decade ticks).
+// The SVG text: left panel y = total, middle panel y = fidelity, x = time_ms (log, decade
+// ticks); a third panel y = total, x = bytes in MB (log), when any point has bytes > 0.
 // Each panel's front (cost = time, score = that panel's y, over all points) is drawn as a
 // staircase through its points in time order, and its points are ringed. Deterministic: every
 // number has fixed precision. Points with a non-finite time or y are left out of that panel.

@@ -51,9 +51,17 @@ int main(int argc, char** argv) {
       write_exr_rgb(out + "/shaded.exr", shaded);
       write_png_rgb(out + "/shaded.png", shaded);
     }
-    std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f + lookup %.3f), camera pass %.3f ms; %s\n",
+    std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f = faces %.3f + render %.3f + filter %.3f;"
+                " lookup %.3f), camera pass %.3f ms; %s\n",
                 spec.text.c_str(), scene.name.c_str(), g.width, g.height, r.shadow_ms(), r.map_ms,
-                r.lookup_ms, camera_ms, r.notes.c_str());
+                r.faces_ms, r.render_ms, r.filter_ms, r.lookup_ms, camera_ms, r.notes.c_str());
+    const WorkCounts& w = r.work;
+    std::printf("work: %llu triangles submitted, %llu binned; %llu texels rendered, %llu filtered; "
+                "%llu pixels looked up, %.2f taps/pixel; %.2f MB written, %.2f MB read\n",
+                (unsigned long long)w.triangles_submitted, (unsigned long long)w.triangles_binned,
+                (unsigned long long)w.texels_rendered, (unsigned long long)w.texels_filtered,
+                (unsigned long long)w.pixels_looked_up, w.taps_per_pixel(),
+                double(w.bytes_written) * 1e-6, double(w.bytes_read) * 1e-6);
     std::printf("wrote %s/mask.exr, mask.png%s, timing.json%s\n", out.c_str(),
                 r.texels.empty() ? "" : ", texel.exr",
                 scene.projector.enabled ? ", shaded.exr, shaded.png" : "");

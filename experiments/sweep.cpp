@@ -118,8 +118,9 @@ std::string sweep_table(const SweepResult& r) {
   int w = 18;
   for (const SweepRow& row : r.rows) w = std::max(w, int(std::min<size_t>(row.label.size(), 200)));
   std::snprintf(line, sizeof line,
-                "%-*s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s\n", w, "method", "c10", "c50",
-                "c90", "dark", "lit", "acne", "noise", "detail", "shadow ms", "RP", "total");
+                "%-*s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s %8s %7s %7s\n", w, "method", "c10",
+                "c50", "c90", "dark", "lit", "acne", "noise", "detail", "shadow ms", "RP", "total",
+                "Mtexels", "taps/px", "MB");
   s += line;
   auto add = [&](const SweepRow& row, bool is_ref) {
     const MetricReport& m = row.report;
@@ -136,10 +137,19 @@ std::string sweep_table(const SweepResult& r) {
       std::snprintf(rp, sizeof rp, "%.3f", m.performance);
       std::snprintf(total, sizeof total, "%.3f", m.total);
     }
+    // Work counts (README "Work counts"): texels rendered, mean taps per looked-up pixel, map
+    // bytes touched (written + read), all per repeat; "-" for the ray tracer.
+    const WorkCounts& wk = row.result.work;
+    char tex[16] = "-", taps[16] = "-", mb[16] = "-";
+    if (!is_ref) {
+      std::snprintf(tex, sizeof tex, "%.2f", double(wk.texels_rendered) * 1e-6);
+      std::snprintf(taps, sizeof taps, "%.1f", wk.taps_per_pixel());
+      std::snprintf(mb, sizeof mb, "%.1f", double(wk.bytes_touched()) * 1e-6);
+    }
     std::snprintf(line, sizeof line,
-                  "%-*s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s\n",
+                  "%-*s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s %8s %7s %7s\n",
                   w, row.label.c_str(), m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
-                  m.detail, time, rp, total);
+                  m.detail, time, rp, total, tex, taps, mb);
     s += line;
   };
   add(r.reference, true);
@@ -162,9 +172,7 @@ nlohmann::json row_json(const SweepRow& row) {
            {"rmse", m.rmse}, {"psnr", m.psnr}, {"total", m.total}})
     j[k] = v;
   if (m.has_performance) j["performance"] = m.performance;
-  j["map_ms"] = row.result.map_ms;
-  j["lookup_ms"] = row.result.lookup_ms;
-  j["shadow_ms"] = row.result.shadow_ms();
+  j.update(timing_json(row.result));
   j["faces_needed"] = row.result.faces_needed;
   j["faces_rendered"] = row.result.faces_rendered;
   j["from_cache"] = row.result.from_cache;
@@ -177,18 +185,18 @@ nlohmann::json row_json(const SweepRow& row) {
 void write_sweep_csv(const std::string& path, const SweepResult& r) {
   std::ofstream f(path);
   f << "label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
-       "lookup_ms,performance,total,faces_rendered\n";
+       "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
     char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "%s,\"%s\",%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,%.4f,"
-                  "%.4f,%.6f,%.6f,%d\n",
+                  "%.4f,%.6f,%.6f,%d,",
                   row.label.c_str(), row.spec.c_str(), row.res, m.c10, m.c50, m.c90, m.dark,
                   m.lit, m.acne, m.noise, m.detail, m.ssim, m.rmse, m.psnr, row.result.shadow_ms(),
                   row.result.map_ms, row.result.lookup_ms, m.performance, m.total,
                   row.result.faces_rendered);
-    f << buf;
+    f << buf << work_csv_values(row.result) << "\n";
   };
   add(r.reference);
   for (const SweepRow& row : r.rows) add(row);
@@ -213,7 +221,7 @@ std::vector<PlotPoint> sweep_plot_points(const SweepResult& r) {
   std::vector<PlotPoint> points;
   for (const SweepRow& row : r.rows)
     points.push_back({row.label, row.technique, row.result.shadow_ms(), row.report.total,
-                      row.report.fidelity});
+                      row.report.fidelity, double(row.result.work.bytes_touched())});
   return points;
 }
 

@@ -142,6 +142,27 @@ TEST(ParetoSvg, EachPanelRingsItsOwnFront) {
   EXPECT_EQ(count(left, ","), 5u) << left;
 }
 
+TEST(ParetoSvg, WorkCountsAddABytesPanelWithItsOwnFront) {
+  // Bytes: #0 2 MB, #1 50 MB, #2 1 MB, #3 300 MB; totals 0.5, 0.7, 0.6, 0.8. #2 has fewer bytes
+  // and a higher total than #0, so the bytes front is #2, #1, #3.
+  std::vector<PlotPoint> points = sample_points();
+  const double mb[4] = {2.0, 50.0, 1.0, 300.0};
+  for (size_t i = 0; i < points.size(); ++i) points[i].bytes = mb[i] * 1e6;
+  const std::string svg = pareto_svg(points, "t");
+  EXPECT_EQ(count(svg, "class=\"pt\""), 3 * points.size());
+  EXPECT_EQ(count(svg, "<polyline class=\"front\""), 3u);
+  // 3 + 2 rings on the time panels (EachPanelRingsItsOwnFront) + 3 on the bytes panel.
+  EXPECT_EQ(count(svg, "class=\"ring\""), 8u);
+  EXPECT_NE(svg.find("map bytes touched (MB, log scale)"), std::string::npos);
+  // Bytes ticks: 1 MB .. 1000 MB after the time panels' 1 .. 10 ms.
+  const std::vector<std::string> ticks = texts_of_class(svg, "xtick");
+  ASSERT_EQ(ticks.size(), 2u * 2u + 4u);
+  EXPECT_EQ(std::vector<std::string>(ticks.end() - 4, ticks.end()),
+            (std::vector<std::string>{"1", "10", "100", "1000"}));
+  // Without counts the page keeps its two panels.
+  EXPECT_EQ(pareto_svg(sample_points(), "t").find("bytes touched"), std::string::npos);
+}
+
 TEST(ParetoSvg, EscapesXmlSpecialCharacters) {
   std::vector<PlotPoint> points = {{"A<B & \"C\" 'd'>", "s&t", 3.0, 0.4, 0.6}};
   const std::string svg = pareto_svg(points, "x < y & z");

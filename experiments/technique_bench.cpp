@@ -1,0 +1,113 @@
+// technique_bench: the light-map pipeline's phases (faces needed, render, filter, lookup) for a
+// list of techniques on one scene, interleaved (every repeat runs every technique once, so
+// machine drift hits all of them alike), with the medians, the work counts and the
+// even-engineering targets of the README's performance section as ratios of those medians.
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "core/parallel.h"
+#include "core/timer.h"
+#include "experiments/cli.h"
+#include "raster/gbuffer_pass.h"
+#include "techniques/technique.h"
+
+using namespace shadowlab;
+
+namespace {
+
+struct Times {
+  std::vector<double> faces, render, filter, lookup;
+  WorkCounts work;
+};
+
+const char* const kDefaultSpecs =
+    "csm,csm:pcf=3,tsm,tsm:pcf=3,cvsm,tvsm,cesm,tesm";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_main(argc, argv, [](int argc, char** argv) {
+    std::vector<FlagDef> defs = common_flags();
+    defs.push_back({"--techniques", "LIST", std::string("specs without res (default ") + kDefaultSpecs + ")"});
+    defs.push_back({"--res", "N", "map resolution of every spec (default 1024)"});
+    defs.push_back({"--repeats", "N", "interleaved repeats, medians reported, >= 3 (default 9)"});
+    const ParsedArgs args = parse_args(argc, argv, defs);
+    if (args.has("--help")) {
+      std::printf("%s", usage_text("technique_bench [--scene S] [--techniques LIST] [flags]", defs).c_str());
+      return 0;
+    }
+    const int res = args.get_int("--res", 1024, 1, 8192);
+    const int repeats = args.get_int("--repeats", 9, 3, 1000);
+    std::vector<TechniqueSpec> specs;
+    for (const std::string& t : split_spec_list(args.get("--techniques", kDefaultSpecs))) {
+      TechniqueSpec s = parse_technique_spec(t, "--techniques");
+      if (s.name == "rt") throw InputError("--techniques", "rt is not a light-map technique");
+      s.params["res"] = std::to_string(res);
+      s.text = spec_text(s);
+      validate_technique(s, "--techniques");
+      specs.push_back(s);
+    }
+    const Scene scene = scene_from_args(args);
+    GBuffer g;
+    render_gbuffer(scene, g);
+    std::printf("scene %s: %zu triangles, %dx%d, %d threads, res %d, %d interleaved repeats\n",
+                scene.name.c_str(), scene.triangle_count(), g.width, g.height, thread_count(), res,
+                repeats);
+    std::map<std::string, Times> times;
+    RunOptions opt;
+    opt.want_texels = false;
+    for (const TechniqueSpec& s : specs) run_technique(s, scene, g, opt);  // warm-up
+    for (int rep = 0; rep < repeats; ++rep)
+      for (const TechniqueSpec& s : specs) {
+        const ShadowResult r = run_technique(s, scene, g, opt);
+        Times& t = times[s.text];
+        t.faces.push_back(r.faces_ms);
+        t.render.push_back(r.render_ms);
+        t.filter.push_back(r.filter_ms);
+        t.lookup.push_back(r.lookup_ms);
+        t.work = r.work;
+      }
+    std::printf("%-26s %8s %8s %8s %8s   %8s %8s %8s\n", "technique", "faces", "render", "filter",
+                "lookup", "Mtexels", "taps/px", "MB");
+    std::map<std::string, double> lookup_ms, faces_ms, render_ms, filter_ms;
+    for (const TechniqueSpec& s : specs) {
+      const Times& t = times[s.text];
+      faces_ms[s.text] = median(t.faces);
+      render_ms[s.text] = median(t.render);
+      filter_ms[s.text] = median(t.filter);
+      lookup_ms[s.text] = median(t.lookup);
+      std::printf("%-26s %8.2f %8.2f %8.2f %8.2f   %8.2f %8.2f %8.1f\n", s.text.c_str(),
+                  faces_ms[s.text], render_ms[s.text], filter_ms[s.text], lookup_ms[s.text],
+                  double(t.work.texels_rendered) * 1e-6, t.work.taps_per_pixel(),
+                  double(t.work.bytes_touched()) * 1e-6);
+    }
+    // The targets (README "Performance"), for the specs that are present.
+    auto key = [&](const std::string& name, const std::string& extra) {
+      return name + ":" + (extra.empty() ? "" : extra + ",") + "res=" + std::to_string(res);
+    };
+    auto have = [&](const std::string& k) { return lookup_ms.count(k) != 0; };
+    auto target = [&](const std::string& what, double ratio, double limit) {
+      std::printf("  %-58s %6.2f  (target <= %.2f)  %s\n", what.c_str(), ratio, limit,
+                  ratio <= limit ? "met" : "MISSED");
+    };
+    std::printf("targets (ratios of medians):\n");
+    const std::string csm1 = key("csm", "");
+    if (have(csm1) && have(key("tsm", "")))
+      target("tsm pcf=1 lookup / csm pcf=1 lookup", lookup_ms[key("tsm", "")] / lookup_ms[csm1], 1.25);
+    for (const char* layout : {"csm", "tsm", "psm"})
+      if (have(key(layout, "")) && have(key(layout, "pcf=3")))
+        target(std::string(layout) + " pcf=3 lookup / pcf=1 lookup",
+               lookup_ms[key(layout, "pcf=3")] / lookup_ms[key(layout, "")], 3.0);
+    for (const char* f : {"cvsm", "tvsm", "cesm", "tesm"})
+      if (have(csm1) && have(key(f, "")))
+        target(std::string(f) + " lookup / csm pcf=1 lookup", lookup_ms[key(f, "")] / lookup_ms[csm1], 2.0);
+    for (const char* f : {"cvsm", "tvsm", "cesm", "tesm"})
+      if (have(key(f, "")))
+        target(std::string(f) + " blur=3 filter / its face render",
+               filter_ms[key(f, "")] / render_ms[key(f, "")], 1.0);
+    for (const TechniqueSpec& s : specs)
+      target(s.text + " faces needed / lookup", faces_ms[s.text] / lookup_ms[s.text], 0.10);
+    return 0;
+  });
+}
