@@ -71,8 +71,16 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
   constexpr size_t kConcurrentFacesMaxTriangles = 250000;
   const bool concurrent = scene.triangle_count() <= kConcurrentFacesMaxTriangles;
   std::vector<RasterStats> stats(n);
-  for (size_t i = 0; i < n; ++i)
-    if (!needed[i]) out.distance[i].clear();
+  // Storage is sized here, on the calling thread, face after face: the faces then come from
+  // one malloc arena, near each other, so the lookup kernels can gather from all of them with
+  // 32-bit offsets from one base (techniques/map_lookup_simd.h). Sized by worker threads they
+  // would land in per-thread arenas gigabytes apart.
+  for (size_t i = 0; i < n; ++i) {
+    if (!needed[i])
+      out.distance[i].clear();
+    else
+      out.distance[i].resize(layout.faces[i].texel_count());
+  }
   auto render_face = [&](size_t i) {
     if (!needed[i]) return;
     const LightFace& face = layout.faces[i];

@@ -6,7 +6,6 @@
 
 #include "core/error.h"
 #include "core/timer.h"
-#include "techniques/cube_lookup_simd.h"
 #include "techniques/map_lookup_simd.h"
 #include "techniques/map_receiver.h"
 
@@ -115,10 +114,68 @@ float chebyshev(double t, double mean, double var, double min_var, double bleed)
 // No SIMD block: every pixel runs the scalar loop.
 size_t no_block(size_t, size_t) { return 0; }
 
+// The receivers of a SIMD group's lanes, for the scalar visibility of the lanes `r.active` marks.
+Receiver lane_receiver(const Receivers8& r, int k) {
+  Receiver rc;
+  rc.face = r.face[k];
+  rc.st = vec2(r.sx[k], r.sy[k]);
+  rc.depth = r.depth[k];
+  rc.texel = uint32_t(r.texel[k]);
+  return rc;
+}
+
+// Runs the pixel loop with the AVX2 kernels in front where they apply (no normal offset; the
+// scalar loop, their oracle, handles the rest): the receivers of 8 pixels at a time, then the
+// one-tap or N×N compare in vector form (depth), or `visibility` per lane (the moment maps).
+template <class Visibility>
+void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
+                   ImageF& mask, ImageU32* texels, const Visibility& visibility) {
+  const FaceLayout& L = map.layout;
+  const Receivers8Fn receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
+  if (!receivers8) {
+    lookup_faces(scene, g, L, p, mask, texels, visibility, no_block);
+    return;
+  }
+  const MapLookupConsts c = map_lookup_consts(scene, L, p, map.dist.distance);
+  const bool depth = p.filter == MapFilter::Depth && c.gather_ok;
+  const Depth1Fn depth1 = depth && p.pcf <= 1 ? depth1_simd() : nullptr;
+  const PcfFn pcf = depth && p.pcf > 1 ? pcf_simd() : nullptr;
+  lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
+    size_t i = b;
+    for (; i + 8 <= e; i += 8) {
+      const float* pos = &g.position[i].x;
+      const float* nrm = &g.geo_normal[i].x;
+      float* m = &mask.data[i];
+      uint32_t* t = texels ? &texels->data[i] : nullptr;
+      if (depth1) {
+        depth1(c, pos, nrm, &g.covered[i], m, t);
+        continue;
+      }
+      Receivers8 r;
+      if (pcf) {
+        pcf(c, p.pcf, pos, nrm, &g.covered[i], m, t, r);
+      } else {
+        receivers8(c, pos, nrm, &g.covered[i], r);
+        for (int k = 0; k < 8; ++k) {
+          m[k] = r.mask[k];
+          if (t) t[k] = uint32_t(r.texel[k]);
+        }
+      }
+      for (int k = 0; k < 8; ++k) {
+        if (!r.active[k]) continue;
+        const Receiver rc = lane_receiver(r, k);
+        m[k] = std::clamp(visibility(rc), 0.0f, 1.0f);
+        if (t) t[k] = rc.texel;
+      }
+    }
+    return i - b;
+  });
+}
+
 void lookup_depth(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
                   ImageF& mask, ImageU32* texels) {
   const FaceLayout& L = map.layout;
-  auto visibility = [&](const Receiver& r) {
+  lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {
     // Lit weight over total weight: both sums see the same additions, so an all-lit
     // footprint gives exactly 1 whatever the float rounding of the weights.
     float lit = 0.0f, total = 0.0f;
@@ -128,42 +185,7 @@ void lookup_depth(const Scene& scene, const GBuffer& g, const MapParams& p, cons
       lit += r.depth <= map.dist.distance[size_t(f)][size_t(y) * size_t(lf.width) + size_t(x)] ? w : 0.0f;
     });
     return total > 0.0f ? std::min(lit / total, 1.0f) : 1.0f;
-  };
-  // SIMD kernels for the one-tap compare (scalar loop above is their oracle).
-  if (p.pcf <= 1 && p.normal <= 0.0f) {
-    if (L.kind == FaceLayoutKind::Cube && L.guard == 0) {
-      if (const CubeLookup8Fn simd = cube_lookup8_simd()) {
-        const float texel_angle = 2.0f / float(L.res);
-        CubeLookupConsts c{scene.light.position, 1.0f / scene.light.far, p.bias,
-                           p.slope * map_reach(p) * texel_angle, L.res, {}};
-        for (int f = 0; f < kCubeFaces; ++f)
-          c.face_depth[f] = map.dist.distance[size_t(f)].empty() ? nullptr
-                                                                 : map.dist.distance[size_t(f)].data();
-        lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
-          size_t i = b;
-          for (; i + 8 <= e; i += 8)
-            simd(c, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], &mask.data[i],
-                 texels ? &texels->data[i] : nullptr);
-          return i - b;
-        });
-        return;
-      }
-    }
-    if (L.kind != FaceLayoutKind::Cube) {
-      if (const MapLookup8Fn simd = map_lookup8_simd()) {
-        const MapLookupConsts c = map_lookup_consts(scene, L, p, map.dist.distance);
-        lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
-          size_t i = b;
-          for (; i + 8 <= e; i += 8)
-            simd(c, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], &mask.data[i],
-                 texels ? &texels->data[i] : nullptr);
-          return i - b;
-        });
-        return;
-      }
-    }
-  }
-  lookup_faces(scene, g, L, p, mask, texels, visibility, no_block);
+  });
 }
 
 }  // namespace
@@ -178,7 +200,7 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
   }
   if (p.filter == MapFilter::Exponential) {
     const double c = p.c;
-    lookup_faces(scene, g, L, p, mask, texels, [&](const Receiver& r) {
+    lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {
       const LightFace& f = L.faces[size_t(r.face)];
       const float* z = map.a[size_t(r.face)].data();
       const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
@@ -192,13 +214,13 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
       const float v = (1.0f - bl.fy) * ((1.0f - bl.fx) * term(bl.x0, bl.y0) + bl.fx * term(bl.x1, bl.y0)) +
                       bl.fy * ((1.0f - bl.fx) * term(bl.x0, bl.y1) + bl.fx * term(bl.x1, bl.y1));
       return std::min(v, 1.0f);
-    }, no_block);
+    });
     return;
   }
   // Variance.
   const double min_var = p.min_variance * inv_far * inv_far;
   const double eps = p.maxdepth_eps * inv_far;
-  lookup_faces(scene, g, L, p, mask, texels, [&](const Receiver& r) {
+  lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {
     const size_t fi = size_t(r.face);
     const LightFace& f = L.faces[fi];
     const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
@@ -235,7 +257,7 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
       var += w[k] * (double(B[idx[k]]) + dm * dm);
     }
     return chebyshev(t, mean, var, min_var, p.bleed);
-  }, no_block);
+  });
 }
 
 namespace {

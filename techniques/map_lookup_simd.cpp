@@ -1,5 +1,6 @@
 #include "techniques/map_lookup_simd.h"
 
+#include <climits>
 #include <cstring>
 
 #if defined(__x86_64__)
@@ -15,16 +16,15 @@ namespace shadowlab {
 
 MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, const MapParams& p,
                                   const std::vector<std::vector<float>>& face_depth) {
-  SL_CHECK(layout.faces.size() <= 4);
+  SL_CHECK(layout.faces.size() <= 8);
   MapLookupConsts c;
   c.light = scene.light.position;
   c.inv_far = 1.0f / scene.light.far;
   c.bias = p.bias;
   c.slope_k = p.slope * map_reach(p);
   c.plane_texel = face_texel_plane_size(layout.faces[0]);
-  c.tetra = layout.kind == FaceLayoutKind::Tetrahedron;
-  c.projector = layout.kind == FaceLayoutKind::Projector;
-  if (c.projector) {
+  c.kind = layout.kind;
+  if (c.kind == FaceLayoutKind::Projector) {
     const ProjectorFrame fr = projector_frame(scene.projector);
     c.proj_forward = fr.forward;
     c.proj_right = fr.right;
@@ -32,6 +32,12 @@ MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, 
     c.proj_tan_x = fr.tan_x;
     c.proj_tan_y = fr.tan_y;
   }
+  // The lowest rendered face's storage is the gathers' base.
+  uintptr_t lowest = UINTPTR_MAX;
+  for (const std::vector<float>& d : face_depth)
+    if (!d.empty()) lowest = std::min(lowest, reinterpret_cast<uintptr_t>(d.data()));
+  c.gather_ok = lowest != UINTPTR_MAX;
+  if (c.gather_ok) c.depth_base = reinterpret_cast<const float*>(lowest);
   for (size_t i = 0; i < layout.faces.size(); ++i) {
     const LightFace& f = layout.faces[i];
     for (int k = 0; k < 3; ++k) {
@@ -48,7 +54,14 @@ MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, 
     c.width[i] = f.width;
     c.height[i] = f.height;
     c.base[i] = int32_t(i * f.texel_count());
-    c.depth[i] = face_depth[i].empty() ? nullptr : face_depth[i].data();
+    if (i < face_depth.size() && !face_depth[i].empty()) {
+      const uintptr_t bytes = reinterpret_cast<uintptr_t>(face_depth[i].data()) - lowest;
+      const uintptr_t floats = bytes / sizeof(float);
+      if (bytes % sizeof(float) != 0 || floats + f.texel_count() > uintptr_t(INT32_MAX))
+        c.gather_ok = false;
+      else
+        c.offset[i] = int32_t(floats);
+    }
   }
   return c;
 }
@@ -63,13 +76,30 @@ SL_AVX2 inline __m256 dot3(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by
   return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ax, bx), _mm256_mul_ps(ay, by)),
                        _mm256_mul_ps(az, bz));
 }
-
 SL_AVX2 inline __m256 lane(const float* table, __m256i face) {
   return _mm256_permutevar8x32_ps(_mm256_load_ps(table), face);
 }
+SL_AVX2 inline __m256i lane_i(const int32_t* table, __m256i face) {
+  return _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table)), face);
+}
+SL_AVX2 inline __m256 set(float v) { return _mm256_set1_ps(v); }
 
-SL_AVX2 void lookup8_avx2(const MapLookupConsts& c, const float* pos, const float* nrm,
-                          const uint8_t* covered_in, float* mask, uint32_t* texels) {
+// floor_int (map_receiver.h): truncate, step down where the truncation is above g.
+SL_AVX2 inline __m256i floor_i(__m256 g) {
+  const __m256i i = _mm256_cvttps_epi32(g);
+  const __m256 above = _mm256_cmp_ps(_mm256_cvtepi32_ps(i), g, _CMP_GT_OQ);
+  return _mm256_add_epi32(i, _mm256_castps_si256(above));  // + (-1) where above
+}
+
+struct R8 {
+  __m256 covered, active;  // all-ones lanes
+  __m256 sx, sy, depth;
+  __m256i face, texel;
+};
+
+// make_receiver() and lookup_faces()' gates for 8 pixels (no normal offset).
+SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const float* nrm,
+                            const uint8_t* covered_in) {
   const __m256i stride3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   const __m256 px = _mm256_i32gather_ps(pos, stride3, 4);
   const __m256 py = _mm256_i32gather_ps(pos + 1, stride3, 4);
@@ -80,50 +110,58 @@ SL_AVX2 void lookup8_avx2(const MapLookupConsts& c, const float* pos, const floa
   int64_t cov8;
   std::memcpy(&cov8, covered_in, 8);
   const __m256i cov32 = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(cov8));
-  const __m256 covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(cov32, _mm256_setzero_si256()));
-  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-  const __m256 sign_mask = _mm256_set1_ps(-0.0f);
-  const __m256 lx = _mm256_set1_ps(c.light.x), ly = _mm256_set1_ps(c.light.y),
-               lz = _mm256_set1_ps(c.light.z);
+  R8 r;
+  r.covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(cov32, _mm256_setzero_si256()));
+  const __m256 zero = _mm256_setzero_ps(), one = set(1.0f);
+  const __m256 sign_mask = set(-0.0f);
+  const __m256 lx = set(c.light.x), ly = set(c.light.y), lz = set(c.light.z);
   // Facing test: dot(n, L − P) > 0 (faces_light).
   const __m256 facing = _mm256_cmp_ps(
       dot3(nx, ny, nz, _mm256_sub_ps(lx, px), _mm256_sub_ps(ly, py), _mm256_sub_ps(lz, pz)), zero,
       _CMP_GT_OQ);
   const __m256 tx = _mm256_sub_ps(px, lx), ty = _mm256_sub_ps(py, ly), tz = _mm256_sub_ps(pz, lz);
-  __m256 active = _mm256_and_ps(covered, facing);
-  if (c.projector) {
+  r.active = _mm256_and_ps(r.covered, facing);
+  if (c.kind == FaceLayoutKind::Projector) {
     // projector_slide_coords: in front of the projector and inside [0, 1]² of its slide.
-    const __m256 z = dot3(tx, ty, tz, _mm256_set1_ps(c.proj_forward.x),
-                          _mm256_set1_ps(c.proj_forward.y), _mm256_set1_ps(c.proj_forward.z));
-    const __m256 half = _mm256_set1_ps(0.5f);
-    const __m256 dr = dot3(tx, ty, tz, _mm256_set1_ps(c.proj_right.x),
-                           _mm256_set1_ps(c.proj_right.y), _mm256_set1_ps(c.proj_right.z));
-    const __m256 du = dot3(tx, ty, tz, _mm256_set1_ps(c.proj_up.x), _mm256_set1_ps(c.proj_up.y),
-                           _mm256_set1_ps(c.proj_up.z));
-    const __m256 sx = _mm256_add_ps(
-        half, _mm256_div_ps(_mm256_mul_ps(half, dr), _mm256_mul_ps(z, _mm256_set1_ps(c.proj_tan_x))));
-    const __m256 sy = _mm256_sub_ps(
-        half, _mm256_div_ps(_mm256_mul_ps(half, du), _mm256_mul_ps(z, _mm256_set1_ps(c.proj_tan_y))));
+    const __m256 z = dot3(tx, ty, tz, set(c.proj_forward.x), set(c.proj_forward.y), set(c.proj_forward.z));
+    const __m256 half = set(0.5f);
+    const __m256 dr = dot3(tx, ty, tz, set(c.proj_right.x), set(c.proj_right.y), set(c.proj_right.z));
+    const __m256 du = dot3(tx, ty, tz, set(c.proj_up.x), set(c.proj_up.y), set(c.proj_up.z));
+    const __m256 sx = _mm256_add_ps(half, _mm256_div_ps(_mm256_mul_ps(half, dr), _mm256_mul_ps(z, set(c.proj_tan_x))));
+    const __m256 sy = _mm256_sub_ps(half, _mm256_div_ps(_mm256_mul_ps(half, du), _mm256_mul_ps(z, set(c.proj_tan_y))));
     const __m256 inside = _mm256_and_ps(
         _mm256_and_ps(_mm256_cmp_ps(z, zero, _CMP_GT_OQ),
                       _mm256_and_ps(_mm256_cmp_ps(sx, zero, _CMP_GE_OQ), _mm256_cmp_ps(sx, one, _CMP_LE_OQ))),
         _mm256_and_ps(_mm256_cmp_ps(sy, zero, _CMP_GE_OQ), _mm256_cmp_ps(sy, one, _CMP_LE_OQ)));
-    active = _mm256_and_ps(active, inside);
+    r.active = _mm256_and_ps(r.active, inside);
   }
   const __m256 dist = _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz));
-  // Face: argmax of dot(dir, normal) over the tetrahedron's faces, ties to the lower index.
   __m256i face = _mm256_setzero_si256();
-  if (c.tetra) {
-    __m256 best = dot3(tx, ty, tz, _mm256_set1_ps(c.fwd[0][0]), _mm256_set1_ps(c.fwd[1][0]),
-                       _mm256_set1_ps(c.fwd[2][0]));
+  if (c.kind == FaceLayoutKind::Cube) {
+    // cube_face_of: major axis, ties towards x then y, a zero component counts as positive.
+    const __m256 ax = _mm256_andnot_ps(sign_mask, tx), ay = _mm256_andnot_ps(sign_mask, ty),
+                 az = _mm256_andnot_ps(sign_mask, tz);
+    const __m256 xmaj = _mm256_and_ps(_mm256_cmp_ps(ax, ay, _CMP_GE_OQ), _mm256_cmp_ps(ax, az, _CMP_GE_OQ));
+    const __m256 ymaj = _mm256_andnot_ps(xmaj, _mm256_cmp_ps(ay, az, _CMP_GE_OQ));
+    const __m256 neg = _mm256_blendv_ps(
+        _mm256_blendv_ps(_mm256_cmp_ps(tz, zero, _CMP_LT_OQ), _mm256_cmp_ps(ty, zero, _CMP_LT_OQ), ymaj),
+        _mm256_cmp_ps(tx, zero, _CMP_LT_OQ), xmaj);
+    face = _mm256_add_epi32(
+        _mm256_blendv_epi8(_mm256_blendv_epi8(_mm256_set1_epi32(4), _mm256_set1_epi32(2),
+                                              _mm256_castps_si256(ymaj)),
+                           _mm256_setzero_si256(), _mm256_castps_si256(xmaj)),
+        _mm256_and_si256(_mm256_castps_si256(neg), _mm256_set1_epi32(1)));
+  } else if (c.kind == FaceLayoutKind::Tetrahedron) {
+    // argmax of dot(dir, normal), ties to the lower index.
+    __m256 best = dot3(tx, ty, tz, set(c.fwd[0][0]), set(c.fwd[1][0]), set(c.fwd[2][0]));
     for (int i = 1; i < 4; ++i) {
-      const __m256 d = dot3(tx, ty, tz, _mm256_set1_ps(c.fwd[0][i]), _mm256_set1_ps(c.fwd[1][i]),
-                            _mm256_set1_ps(c.fwd[2][i]));
+      const __m256 d = dot3(tx, ty, tz, set(c.fwd[0][i]), set(c.fwd[1][i]), set(c.fwd[2][i]));
       const __m256 better = _mm256_cmp_ps(d, best, _CMP_GT_OQ);
       best = _mm256_blendv_ps(best, d, better);
       face = _mm256_blendv_epi8(face, _mm256_set1_epi32(i), _mm256_castps_si256(better));
     }
   }
+  r.face = face;
   // Texel coordinates in the face (face_texel_coords).
   const __m256 axial = dot3(tx, ty, tz, lane(c.fwd[0], face), lane(c.fwd[1], face), lane(c.fwd[2], face));
   const __m256 inv = _mm256_div_ps(one, axial);
@@ -131,55 +169,140 @@ SL_AVX2 void lookup8_avx2(const MapLookupConsts& c, const float* pos, const floa
                                       lane(c.right[2], face)), inv);
   const __m256 v = _mm256_mul_ps(dot3(tx, ty, tz, lane(c.up[0], face), lane(c.up[1], face),
                                       lane(c.up[2], face)), inv);
-  const __m256 sx = _mm256_mul_ps(
-      _mm256_div_ps(_mm256_sub_ps(u, lane(c.left, face)), lane(c.range_u, face)), lane(c.width_f, face));
-  const __m256 sy = _mm256_mul_ps(
-      _mm256_div_ps(_mm256_sub_ps(lane(c.top, face), v), lane(c.range_v, face)), lane(c.height_f, face));
-  const __m256 m1 = _mm256_set1_ps(-1.0f);
-  const __m256i w = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(c.width)), face);
-  const __m256i h = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(c.height)), face);
-  const __m256i base = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(c.base)), face);
+  r.sx = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(u, lane(c.left, face)), lane(c.range_u, face)),
+                       lane(c.width_f, face));
+  r.sy = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(lane(c.top, face), v), lane(c.range_v, face)),
+                       lane(c.height_f, face));
+  const __m256 m1 = set(-1.0f);
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
   const __m256i lo = _mm256_setzero_si256(), one_i = _mm256_set1_epi32(1);
   const __m256i itx = _mm256_min_epi32(
-      _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(sx, m1)), lo), _mm256_sub_epi32(w, one_i));
+      _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(r.sx, m1)), lo), _mm256_sub_epi32(w, one_i));
   const __m256i ity = _mm256_min_epi32(
-      _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(sy, m1)), lo), _mm256_sub_epi32(h, one_i));
-  const __m256i in_face = _mm256_add_epi32(_mm256_mullo_epi32(ity, w), itx);
-  const __m256i texel = _mm256_add_epi32(base, in_face);
+      _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(r.sy, m1)), lo), _mm256_sub_epi32(h, one_i));
+  r.texel = _mm256_add_epi32(lane_i(c.base, face), _mm256_add_epi32(_mm256_mullo_epi32(ity, w), itx));
   // Bias and receiver depth, in make_receiver's order of operations.
   const __m256 ndot = dot3(nx, ny, nz, _mm256_xor_ps(tx, sign_mask), _mm256_xor_ps(ty, sign_mask),
                            _mm256_xor_ps(tz, sign_mask));
-  const __m256 cos_t =
-      _mm256_min_ps(_mm256_max_ps(_mm256_div_ps(ndot, dist), _mm256_set1_ps(1e-4f)), one);
+  const __m256 cos_t = _mm256_min_ps(_mm256_max_ps(_mm256_div_ps(ndot, dist), set(1e-4f)), one);
   const __m256 tan_t = _mm256_min_ps(
-      _mm256_div_ps(_mm256_sqrt_ps(_mm256_sub_ps(one, _mm256_mul_ps(cos_t, cos_t))), cos_t),
-      _mm256_set1_ps(10.0f));
-  const __m256 slope_bias = _mm256_mul_ps(
-      _mm256_mul_ps(_mm256_set1_ps(c.slope_k), _mm256_mul_ps(_mm256_set1_ps(c.plane_texel), axial)), tan_t);
-  const __m256 receiver = _mm256_mul_ps(
-      _mm256_sub_ps(dist, _mm256_add_ps(_mm256_set1_ps(c.bias), slope_bias)), _mm256_set1_ps(c.inv_far));
-  // Stored distance: read only for active lanes (an inactive lane's face may not exist).
-  alignas(32) int32_t face_a[8], idx_a[8], act_a[8];
-  alignas(32) float stored_a[8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(face_a), face);
-  _mm256_store_si256(reinterpret_cast<__m256i*>(idx_a), in_face);
-  _mm256_store_si256(reinterpret_cast<__m256i*>(act_a), _mm256_castps_si256(active));
-  for (int i = 0; i < 8; ++i) stored_a[i] = act_a[i] ? c.depth[face_a[i]][idx_a[i]] : 0.0f;
-  const __m256 lit = _mm256_and_ps(_mm256_cmp_ps(receiver, _mm256_load_ps(stored_a), _CMP_LE_OQ), one);
-  // Mask: uncovered 1, covered but not looked up 0, else lit.
-  const __m256 m = _mm256_blendv_ps(_mm256_blendv_ps(one, zero, covered), lit, active);
-  _mm256_storeu_ps(mask, m);
+      _mm256_div_ps(_mm256_sqrt_ps(_mm256_sub_ps(one, _mm256_mul_ps(cos_t, cos_t))), cos_t), set(10.0f));
+  const __m256 k = set(c.slope_k), plane = set(c.plane_texel);
+  const __m256 slope_bias =
+      c.kind == FaceLayoutKind::Cube
+          ? _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(k, plane), dist), tan_t)
+          : _mm256_mul_ps(_mm256_mul_ps(k, _mm256_mul_ps(plane, axial)), tan_t);
+  r.depth = _mm256_mul_ps(_mm256_sub_ps(dist, _mm256_add_ps(set(c.bias), slope_bias)), set(c.inv_far));
+  return r;
+}
+
+// Mask of lanes that look nothing up: 1 uncovered, 0 otherwise.
+SL_AVX2 inline __m256 base_mask(const R8& r) {
+  return _mm256_blendv_ps(set(1.0f), _mm256_setzero_ps(), r.covered);
+}
+
+SL_AVX2 inline void store_texels(uint32_t* texels, const R8& r, __m256 lanes) {
   if (texels)
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(texels),
-                        _mm256_blendv_epi8(_mm256_set1_epi32(-1), texel, _mm256_castps_si256(active)));
+                        _mm256_blendv_epi8(_mm256_set1_epi32(-1), r.texel, _mm256_castps_si256(lanes)));
+}
+
+SL_AVX2 void receivers8_avx2(const MapLookupConsts& c, const float* pos, const float* nrm,
+                             const uint8_t* covered, Receivers8& out) {
+  const R8 r = receivers(c, pos, nrm, covered);
+  _mm256_store_ps(out.sx, r.sx);
+  _mm256_store_ps(out.sy, r.sy);
+  _mm256_store_ps(out.depth, r.depth);
+  _mm256_store_ps(out.mask, base_mask(r));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.face), r.face);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.texel),
+                     _mm256_blendv_epi8(_mm256_set1_epi32(-1), r.texel, _mm256_castps_si256(r.active)));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.active), _mm256_castps_si256(r.active));
+}
+
+SL_AVX2 void depth1_avx2(const MapLookupConsts& c, const float* pos, const float* nrm,
+                         const uint8_t* covered, float* mask, uint32_t* texels) {
+  const R8 r = receivers(c, pos, nrm, covered);
+  // The texel's stored distance, read only for active lanes (an inactive lane's face may not
+  // have been rendered).
+  const __m256i idx = _mm256_add_epi32(lane_i(c.offset, r.face),
+                                       _mm256_sub_epi32(r.texel, lane_i(c.base, r.face)));
+  const __m256 stored = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), c.depth_base, idx, r.active, 4);
+  const __m256 lit = _mm256_and_ps(_mm256_cmp_ps(r.depth, stored, _CMP_LE_OQ), set(1.0f));
+  _mm256_storeu_ps(mask, _mm256_blendv_ps(base_mask(r), lit, r.active));
+  store_texels(texels, r, r.active);
+}
+
+SL_AVX2 void pcf_avx2(const MapLookupConsts& c, int pcf, const float* pos, const float* nrm,
+                      const uint8_t* covered, float* mask, uint32_t* texels, Receivers8& rest) {
+  const R8 r = receivers(c, pos, nrm, covered);
+  // for_each_pcf_tap's footprint: columns bx - half .. bx - half + pcf, weights (1 - fx, 1, …,
+  // 1, fx)/pcf per axis, rows likewise.
+  const __m256 half_px = set(0.5f);
+  const __m256 gx = _mm256_sub_ps(r.sx, half_px), gy = _mm256_sub_ps(r.sy, half_px);
+  const __m256i bx = floor_i(gx), by = floor_i(gy);
+  const __m256 fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(bx)), fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(by));
+  const __m256i half = _mm256_set1_epi32((pcf - 1) / 2), n = _mm256_set1_epi32(pcf);
+  const __m256i x0 = _mm256_sub_epi32(bx, half), y0 = _mm256_sub_epi32(by, half);
+  const __m256i w = lane_i(c.width, r.face), h = lane_i(c.height, r.face);
+  const __m256i neg1 = _mm256_set1_epi32(-1);
+  // Inside: x0 >= 0, y0 >= 0, x0 + pcf < w, y0 + pcf < h (pcf_taps_inside).
+  const __m256i inside_i = _mm256_and_si256(
+      _mm256_and_si256(_mm256_cmpgt_epi32(x0, neg1), _mm256_cmpgt_epi32(y0, neg1)),
+      _mm256_and_si256(_mm256_cmpgt_epi32(w, _mm256_add_epi32(x0, n)),
+                       _mm256_cmpgt_epi32(h, _mm256_add_epi32(y0, n))));
+  const __m256 vec = _mm256_and_ps(r.active, _mm256_castsi256_ps(inside_i));
+  const __m256 one = set(1.0f), zero = _mm256_setzero_ps();
+  const __m256 norm = set(1.0f / float(pcf * pcf));
+  __m256 lit = zero, total = zero;
+  const __m256i origin = _mm256_add_epi32(lane_i(c.offset, r.face), x0);
+  for (int j = 0; j <= pcf; ++j) {
+    const __m256 wy = j == 0 ? _mm256_sub_ps(one, fy) : (j == pcf ? fy : one);
+    const __m256i row = _mm256_add_epi32(origin, _mm256_mullo_epi32(_mm256_add_epi32(y0, _mm256_set1_epi32(j)), w));
+    for (int i = 0; i <= pcf; ++i) {
+      const __m256 wx = i == 0 ? _mm256_sub_ps(one, fx) : (i == pcf ? fx : one);
+      const __m256 wt = _mm256_mul_ps(_mm256_mul_ps(wx, wy), norm);
+      const __m256 tap = _mm256_mask_i32gather_ps(zero, c.depth_base,
+                                                  _mm256_add_epi32(row, _mm256_set1_epi32(i)), vec, 4);
+      total = _mm256_add_ps(total, wt);
+      lit = _mm256_add_ps(lit, _mm256_and_ps(_mm256_cmp_ps(r.depth, tap, _CMP_LE_OQ), wt));
+    }
+  }
+  const __m256 vis = _mm256_blendv_ps(one, _mm256_min_ps(_mm256_div_ps(lit, total), one),
+                                      _mm256_cmp_ps(total, zero, _CMP_GT_OQ));
+  // std::clamp(vis, 0, 1) of the pixel loop: vis is already in [0, 1].
+  _mm256_storeu_ps(mask, _mm256_blendv_ps(base_mask(r), vis, vec));
+  store_texels(texels, r, r.active);
+  // The active lanes the vector loop did not take go to the scalar tap walk.
+  const __m256 left = _mm256_andnot_ps(vec, r.active);
+  _mm256_store_ps(rest.sx, r.sx);
+  _mm256_store_ps(rest.sy, r.sy);
+  _mm256_store_ps(rest.depth, r.depth);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(rest.face), r.face);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(rest.texel), r.texel);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(rest.active), _mm256_castps_si256(left));
 }
 
 }  // namespace
 #endif
 
-MapLookup8Fn map_lookup8_simd() {
+Receivers8Fn receivers8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx2_paths()) return lookup8_avx2;
+  if (use_avx2_paths()) return receivers8_avx2;
+#endif
+  return nullptr;
+}
+
+Depth1Fn depth1_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return depth1_avx2;
+#endif
+  return nullptr;
+}
+
+PcfFn pcf_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return pcf_avx2;
 #endif
   return nullptr;
 }

@@ -1,10 +1,15 @@
 #pragma once
-// AVX2 path of the light-map depth lookup with pcf=1 and no normal offset on the tetrahedral and
-// projector layouts, 8 pixels at a time (the cube layout without a guard band has its own kernel,
-// techniques/cube_lookup_simd.h). It performs the same IEEE operations in the same order as
-// make_receiver() and the one-tap compare of techniques/light_map.cpp (its oracle), so masks and
-// texel indices are bit-identical; tests compare whole renders with SHADOWLAB_SCALAR=1 (which
-// disables this path) against the default.
+// AVX2 kernels of the light-map lookup (techniques/light_map.h), 8 GBuffer pixels at a time, for
+// every layout (no normal offset):
+//   receivers  face, texel coordinates, texel index and biased depth of each pixel, exactly as
+//              make_receiver() computes them (techniques/map_receiver.h), for any filter;
+//   depth1     the one-tap compare (pcf=1);
+//   pcf        the N×N bilinear-weighted compare for pixels whose footprint lies inside their
+//              face's image; the others are left to the scalar tap walk.
+// Each performs the same IEEE operations in the same order as the scalar lookup (its oracle), so
+// masks and texel indices are bit-identical: tests/techniques/lookup_simd_test.cpp checks them at
+// the comparison's threshold, and whole renders with SHADOWLAB_SCALAR=1 (which disables these
+// paths) against the default.
 #include <cstdint>
 #include <vector>
 
@@ -15,31 +20,50 @@
 
 namespace shadowlab {
 
-// Per-face constants in lanes 0..3 (one face per lane, at most 4 faces), plus the scalars.
+// Per-face constants in lanes 0..5 (one face per lane), plus the scalars.
 struct MapLookupConsts {
   vec3 light{0.0f};
   float inv_far = 0.0f;
   float bias = 0.0f;             // constant bias, metres
   float slope_k = 0.0f;          // slope × reach (make_receiver's k)
   float plane_texel = 0.0f;      // face 0's plane texel size
-  bool tetra = false;            // faces by argmax of the tetrahedron's normals; else one face
-  bool projector = false;        // gate by the projector's frustum
-  vec3 proj_forward{0.0f}, proj_right{0.0f}, proj_up{0.0f};
+  FaceLayoutKind kind = FaceLayoutKind::Cube;
+  vec3 proj_forward{0.0f}, proj_right{0.0f}, proj_up{0.0f};  // projector gate
   float proj_tan_x = 0.0f, proj_tan_y = 0.0f;
   alignas(32) float fwd[3][8] = {}, right[3][8] = {}, up[3][8] = {};
   alignas(32) float left[8] = {}, range_u[8] = {}, top[8] = {}, range_v[8] = {};
   alignas(32) float width_f[8] = {}, height_f[8] = {};
   alignas(32) int32_t width[8] = {}, height[8] = {}, base[8] = {};
-  const float* depth[4] = {};    // rendered faces (nullptr where a face was not rendered)
+  // Stored distances: face f's texel i is depth_base[offset[f] + i] (offsets in floats from the
+  // lowest rendered face's storage; gathers need one base). gather_ok is false when the faces'
+  // storage lies too far apart for 32-bit offsets (then only the scalar loops run).
+  alignas(32) int32_t offset[8] = {};
+  const float* depth_base = nullptr;
+  bool gather_ok = false;
 };
 
 MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, const MapParams& p,
                                   const std::vector<std::vector<float>>& face_depth);
 
-using MapLookup8Fn = void (*)(const MapLookupConsts& c, const float* pos, const float* nrm,
-                              const uint8_t* covered, float* mask, uint32_t* texels);
+// Receivers of 8 pixels. Inactive lanes (uncovered, facing away, outside the projector) carry
+// their final mask (1 uncovered, else 0) and texel kNoTexel.
+struct Receivers8 {
+  alignas(32) float sx[8], sy[8], depth[8], mask[8];
+  alignas(32) int32_t face[8], texel[8], active[8];
+};
 
-// The AVX2 path, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
-MapLookup8Fn map_lookup8_simd();
+using Receivers8Fn = void (*)(const MapLookupConsts& c, const float* pos, const float* nrm,
+                              const uint8_t* covered, Receivers8& out);
+using Depth1Fn = void (*)(const MapLookupConsts& c, const float* pos, const float* nrm,
+                          const uint8_t* covered, float* mask, uint32_t* texels);
+// Writes mask and texels of every lane but the active lanes whose footprint leaves the face's
+// image: those are returned in `rest` (rest.active set) for the scalar tap walk.
+using PcfFn = void (*)(const MapLookupConsts& c, int pcf, const float* pos, const float* nrm,
+                       const uint8_t* covered, float* mask, uint32_t* texels, Receivers8& rest);
+
+// The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
+Receivers8Fn receivers8_simd();
+Depth1Fn depth1_simd();
+PcfFn pcf_simd();
 
 }  // namespace shadowlab

@@ -226,7 +226,7 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   EXPECT_EQ(l.factor, 1);
   EXPECT_EQ(w, l.width);
   EXPECT_EQ(h, l.height);
-  // The plot: both rows in each of the two panels, not the reference.
+  // The plot: both rows in each of the three panels (time, time, bytes), not the reference.
   const std::string svg = file_bytes(plot);
   ASSERT_FALSE(svg.empty());
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
@@ -236,7 +236,8 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   size_t markers = 0;
   for (size_t p = svg.find("class=\"pt\""); p != std::string::npos; p = svg.find("class=\"pt\"", p + 1))
     ++markers;
-  EXPECT_EQ(markers, 4u);
+  EXPECT_EQ(markers, 6u);
+  EXPECT_NE(svg.find("map bytes touched"), std::string::npos);
 }
 
 TEST(Mains, AlphaFlagsAreChecked) {
