@@ -129,14 +129,17 @@ TEST(Mains, RenderIsIdenticalForOneTwoAndSevenThreads) {
 }
 
 // The scalar paths (SHADOWLAB_SCALAR=1) and the SIMD ones give identical files for a whole
-// render (camera pass, map render, and the pcf=1 lookup kernels of the cube, tetrahedral and
-// projector layouts), on the default scene and on an OBJ.
+// render (camera pass, map render, and the lookup kernels: receivers, one-tap and N×N compare
+// on the cube, tetrahedral and projector layouts, the moment maps' per-lane filters), on the
+// default scene and on an OBJ.
 TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   std::vector<std::string> scenes = {"default"};
   if (!test::assets_dir().empty()) scenes.push_back(test::assets_dir() + "/bunny/stanford-bunny.obj");
   for (const std::string& scene : scenes)
   for (const std::string spec : {"csm:res=512,pcf=3", "csm:res=256", "tsm:res=256",
-                                 "tsm:res=256,slope=3,bias=0.002", "psm:res=256 --slide spot"}) {
+                                 "tsm:res=256,slope=3,bias=0.002", "tsm:res=256,pcf=5",
+                                 "psm:res=256 --slide spot", "psm:res=256,pcf=3 --slide spot",
+                                 "cvsm:res=256", "tvsm:res=256,fp32=1", "tesm:res=256"}) {
     std::vector<std::string> masks, texels;
     for (const char* env : {"SHADOWLAB_SCALAR=1 ", "SHADOWLAB_SCALAR=0 "}) {
       const std::string out = test::binary_path(std::string("render_path_") + env[17]);

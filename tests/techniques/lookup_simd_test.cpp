@@ -91,36 +91,48 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
   struct Config {
     FaceLayoutKind layout;
     float bias, slope;
+    int pcf;
   };
-  for (const Config& cfg : {Config{FaceLayoutKind::Cube, 0.01f, 1.0f}, Config{FaceLayoutKind::Cube, 0.0f, 0.0f},
-                            Config{FaceLayoutKind::Tetrahedron, 0.01f, 1.0f},
-                            Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f},
-                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f}}) {
+  // pcf > 1: the vector N×N loop for footprints inside a face (with cross seams on the cube,
+  // footprints at a face's edge go to the scalar walk; the guard-band layouts keep all inside).
+  for (const Config& cfg : {Config{FaceLayoutKind::Cube, 0.01f, 1.0f, 1}, Config{FaceLayoutKind::Cube, 0.0f, 0.0f, 1},
+                            Config{FaceLayoutKind::Cube, 0.01f, 1.0f, 3},
+                            Config{FaceLayoutKind::Tetrahedron, 0.01f, 1.0f, 1},
+                            Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f, 1},
+                            Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f, 5},
+                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f, 1},
+                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f, 3}}) {
     const bool projector = cfg.layout == FaceLayoutKind::Projector;
     const Case c = random_case(4096, 7, projector);
     MapParams p = default_map_params(cfg.layout, MapFilter::Depth);
     p.res = 64;
     p.bias = cfg.bias;
     p.slope = cfg.slope;
+    p.pcf = cfg.pcf;
     const LightMap map = threshold_map(c, p, 11);
     ImageF scalar_mask, simd_mask;
     ImageU32 scalar_texels, simd_texels;
     lookup_with("1", c, p, map, scalar_mask, scalar_texels);
     lookup_with("0", c, p, map, simd_mask, simd_texels);
-    const std::string what = "layout " + std::to_string(int(cfg.layout)) + " slope " + std::to_string(cfg.slope);
+    const std::string what = "layout " + std::to_string(int(cfg.layout)) + " slope " +
+                             std::to_string(cfg.slope) + " pcf " + std::to_string(cfg.pcf);
     ASSERT_EQ(scalar_mask.data.size(), simd_mask.data.size());
     EXPECT_EQ(std::memcmp(scalar_mask.data.data(), simd_mask.data.data(), scalar_mask.data.size() * 4), 0) << what;
     EXPECT_EQ(std::memcmp(scalar_texels.data.data(), simd_texels.data.data(), scalar_texels.data.size() * 4), 0) << what;
     // Not vacuous: most looked-up receivers sit exactly on their threshold and are lit, and
     // the random texels around them shadow others.
-    size_t lit = 0, looked = 0;
+    size_t lit = 0, partial = 0, looked = 0;
     for (size_t i = 0; i < c.g.pixel_count(); ++i) {
       if (scalar_texels.data[i] == kNoTexel) continue;
       ++looked;
       lit += scalar_mask.data[i] == 1.0f;
+      partial += scalar_mask.data[i] > 0.0f && scalar_mask.data[i] < 1.0f;
     }
     EXPECT_GT(looked, c.g.pixel_count() / 4) << what;
-    EXPECT_GT(lit, looked / 2) << what;
+    if (cfg.pcf == 1)
+      EXPECT_GT(lit, looked / 2) << what;
+    else
+      EXPECT_GT(partial, looked / 2) << what;
   }
 }
 
