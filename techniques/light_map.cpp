@@ -32,12 +32,32 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
   // Only cross-face PCF taps can reach another face; with a guard band every tap stays in the
   // receiver's own face image.
   const bool cross = p.filter == MapFilter::Depth && p.seams == SeamMode::Cross && p.pcf > 1;
-  std::vector<std::vector<char>> flags(chunks, std::vector<char>(nf, 0));
+  // The AVX2 kernel (no normal offset) takes groups of 8 pixels; the scalar loop is its oracle
+  // and takes the rest.
+  const Faces8Fn faces8 = p.normal <= 0.0f ? faces8_simd() : nullptr;
+  const MapLookupConsts consts =
+      faces8 ? map_lookup_consts(scene, layout, p, {}) : MapLookupConsts{};
+  std::vector<uint32_t> flags(chunks, 0);  // bit f: face f needed
   std::vector<size_t> counts(chunks, 0);
   parallel_for_chunks(g.pixel_count(), grain, [&](size_t b, size_t e) {
-    std::vector<char>& f = flags[b / grain];
+    uint32_t f = 0;
     size_t count = 0;
-    for (size_t i = b; i < e; ++i) {
+    auto walk_taps = [&](int face, vec2 st) {
+      for_each_pcf_tap(layout, face, st, p.pcf, [&](int ff, int, int, float) { f |= 1u << ff; });
+    };
+    size_t i = b;
+    if (faces8)
+      for (; i + 8 <= e; i += 8) {
+        Receivers8 rest;
+        const Faces8 r = faces8(consts, cross ? p.pcf : 1, &g.position[i].x, &g.geo_normal[i].x,
+                                &g.covered[i], rest);
+        f |= r.bits;
+        count += r.looked_up;
+        if (r.rest)
+          for (int k = 0; k < 8; ++k)
+            if (rest.active[k]) walk_taps(rest.face[k], vec2(rest.sx[k], rest.sy[k]));
+      }
+    for (; i < e; ++i) {
       if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
       vec2 st;
       if (projector && !projector_slide_coords(frame, scene.light.position, g.position[i], st))
@@ -46,20 +66,20 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
       const vec3 to_p =
           lookup_point(layout, scene.light, p, g.position[i], g.geo_normal[i]) - scene.light.position;
       const int face = face_of(layout, to_p);
-      f[size_t(face)] = 1;
+      f |= 1u << face;
       if (!cross) continue;
       // Interior pixels (the whole footprint inside the face) need nothing more: the per-tap
       // walk runs only within the filter's reach of a face edge.
       const LightFace& lf = layout.faces[size_t(face)];
       const vec2 c = face_texel_coords(lf, to_p);
-      if (pcf_taps_inside(c, p.pcf, lf.width, lf.height)) continue;
-      for_each_pcf_tap(layout, face, c, p.pcf, [&](int ff, int, int, float) { f[size_t(ff)] = 1; });
+      if (!pcf_taps_inside(c, p.pcf, lf.width, lf.height)) walk_taps(face, c);
     }
+    flags[b / grain] = f;
     counts[b / grain] = count;
   });
   std::vector<bool> needed(nf, false);
-  for (const auto& f : flags)
-    for (size_t i = 0; i < nf; ++i) needed[i] = needed[i] || f[i];
+  for (const uint32_t f : flags)
+    for (size_t i = 0; i < nf; ++i) needed[i] = needed[i] || ((f >> i) & 1u);
   if (looked_up) {
     *looked_up = 0;
     for (size_t c : counts) *looked_up += c;

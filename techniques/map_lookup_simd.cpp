@@ -97,30 +97,40 @@ struct R8 {
   __m256i face, texel;
 };
 
-// make_receiver() and lookup_faces()' gates for 8 pixels (no normal offset).
-SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const float* nrm,
-                            const uint8_t* covered_in) {
+// The first half of make_receiver() with lookup_faces()' gates: which lanes look up (covered,
+// facing the light, inside the projector's frustum), the light-to-point vector and the face.
+struct Front {
+  __m256 covered, active;
+  __m256 tx, ty, tz, nx, ny, nz;
+  __m256i face;
+};
+
+SL_AVX2 inline Front front(const MapLookupConsts& c, const float* pos, const float* nrm,
+                           const uint8_t* covered_in) {
   const __m256i stride3 = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   const __m256 px = _mm256_i32gather_ps(pos, stride3, 4);
   const __m256 py = _mm256_i32gather_ps(pos + 1, stride3, 4);
   const __m256 pz = _mm256_i32gather_ps(pos + 2, stride3, 4);
-  const __m256 nx = _mm256_i32gather_ps(nrm, stride3, 4);
-  const __m256 ny = _mm256_i32gather_ps(nrm + 1, stride3, 4);
-  const __m256 nz = _mm256_i32gather_ps(nrm + 2, stride3, 4);
+  Front f;
+  f.nx = _mm256_i32gather_ps(nrm, stride3, 4);
+  f.ny = _mm256_i32gather_ps(nrm + 1, stride3, 4);
+  f.nz = _mm256_i32gather_ps(nrm + 2, stride3, 4);
   int64_t cov8;
   std::memcpy(&cov8, covered_in, 8);
   const __m256i cov32 = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(cov8));
-  R8 r;
-  r.covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(cov32, _mm256_setzero_si256()));
+  f.covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(cov32, _mm256_setzero_si256()));
   const __m256 zero = _mm256_setzero_ps(), one = set(1.0f);
   const __m256 sign_mask = set(-0.0f);
   const __m256 lx = set(c.light.x), ly = set(c.light.y), lz = set(c.light.z);
   // Facing test: dot(n, L − P) > 0 (faces_light).
   const __m256 facing = _mm256_cmp_ps(
-      dot3(nx, ny, nz, _mm256_sub_ps(lx, px), _mm256_sub_ps(ly, py), _mm256_sub_ps(lz, pz)), zero,
-      _CMP_GT_OQ);
+      dot3(f.nx, f.ny, f.nz, _mm256_sub_ps(lx, px), _mm256_sub_ps(ly, py), _mm256_sub_ps(lz, pz)),
+      zero, _CMP_GT_OQ);
   const __m256 tx = _mm256_sub_ps(px, lx), ty = _mm256_sub_ps(py, ly), tz = _mm256_sub_ps(pz, lz);
-  r.active = _mm256_and_ps(r.covered, facing);
+  f.tx = tx;
+  f.ty = ty;
+  f.tz = tz;
+  f.active = _mm256_and_ps(f.covered, facing);
   if (c.kind == FaceLayoutKind::Projector) {
     // projector_slide_coords: in front of the projector and inside [0, 1]² of its slide.
     const __m256 z = dot3(tx, ty, tz, set(c.proj_forward.x), set(c.proj_forward.y), set(c.proj_forward.z));
@@ -133,9 +143,8 @@ SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const fl
         _mm256_and_ps(_mm256_cmp_ps(z, zero, _CMP_GT_OQ),
                       _mm256_and_ps(_mm256_cmp_ps(sx, zero, _CMP_GE_OQ), _mm256_cmp_ps(sx, one, _CMP_LE_OQ))),
         _mm256_and_ps(_mm256_cmp_ps(sy, zero, _CMP_GE_OQ), _mm256_cmp_ps(sy, one, _CMP_LE_OQ)));
-    r.active = _mm256_and_ps(r.active, inside);
+    f.active = _mm256_and_ps(f.active, inside);
   }
-  const __m256 dist = _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz));
   __m256i face = _mm256_setzero_si256();
   if (c.kind == FaceLayoutKind::Cube) {
     // cube_face_of: major axis, ties towards x then y, a zero component counts as positive.
@@ -161,29 +170,50 @@ SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const fl
       face = _mm256_blendv_epi8(face, _mm256_set1_epi32(i), _mm256_castps_si256(better));
     }
   }
-  r.face = face;
-  // Texel coordinates in the face (face_texel_coords).
-  const __m256 axial = dot3(tx, ty, tz, lane(c.fwd[0], face), lane(c.fwd[1], face), lane(c.fwd[2], face));
-  const __m256 inv = _mm256_div_ps(one, axial);
-  const __m256 u = _mm256_mul_ps(dot3(tx, ty, tz, lane(c.right[0], face), lane(c.right[1], face),
+  f.face = face;
+  return f;
+}
+
+// Continuous texel coordinates of the lanes in their faces (face_texel_coords); `axial` is
+// dot(to_p, forward), which the slope bias reuses.
+SL_AVX2 inline void texel_coords(const MapLookupConsts& c, const Front& f, __m256& sx, __m256& sy,
+                                 __m256& axial) {
+  const __m256i face = f.face;
+  axial = dot3(f.tx, f.ty, f.tz, lane(c.fwd[0], face), lane(c.fwd[1], face), lane(c.fwd[2], face));
+  const __m256 inv = _mm256_div_ps(set(1.0f), axial);
+  const __m256 u = _mm256_mul_ps(dot3(f.tx, f.ty, f.tz, lane(c.right[0], face), lane(c.right[1], face),
                                       lane(c.right[2], face)), inv);
-  const __m256 v = _mm256_mul_ps(dot3(tx, ty, tz, lane(c.up[0], face), lane(c.up[1], face),
+  const __m256 v = _mm256_mul_ps(dot3(f.tx, f.ty, f.tz, lane(c.up[0], face), lane(c.up[1], face),
                                       lane(c.up[2], face)), inv);
-  r.sx = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(u, lane(c.left, face)), lane(c.range_u, face)),
-                       lane(c.width_f, face));
-  r.sy = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(lane(c.top, face), v), lane(c.range_v, face)),
-                       lane(c.height_f, face));
+  sx = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(u, lane(c.left, face)), lane(c.range_u, face)),
+                     lane(c.width_f, face));
+  sy = _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(lane(c.top, face), v), lane(c.range_v, face)),
+                     lane(c.height_f, face));
+}
+
+// make_receiver() and lookup_faces()' gates for 8 pixels (no normal offset).
+SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const float* nrm,
+                            const uint8_t* covered_in) {
+  const Front f = front(c, pos, nrm, covered_in);
+  R8 r;
+  r.covered = f.covered;
+  r.active = f.active;
+  r.face = f.face;
+  const __m256 one = set(1.0f), sign_mask = set(-0.0f);
+  __m256 axial;
+  texel_coords(c, f, r.sx, r.sy, axial);
   const __m256 m1 = set(-1.0f);
-  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const __m256i w = lane_i(c.width, f.face), h = lane_i(c.height, f.face);
   const __m256i lo = _mm256_setzero_si256(), one_i = _mm256_set1_epi32(1);
   const __m256i itx = _mm256_min_epi32(
       _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(r.sx, m1)), lo), _mm256_sub_epi32(w, one_i));
   const __m256i ity = _mm256_min_epi32(
       _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_max_ps(r.sy, m1)), lo), _mm256_sub_epi32(h, one_i));
-  r.texel = _mm256_add_epi32(lane_i(c.base, face), _mm256_add_epi32(_mm256_mullo_epi32(ity, w), itx));
+  r.texel = _mm256_add_epi32(lane_i(c.base, f.face), _mm256_add_epi32(_mm256_mullo_epi32(ity, w), itx));
   // Bias and receiver depth, in make_receiver's order of operations.
-  const __m256 ndot = dot3(nx, ny, nz, _mm256_xor_ps(tx, sign_mask), _mm256_xor_ps(ty, sign_mask),
-                           _mm256_xor_ps(tz, sign_mask));
+  const __m256 dist = _mm256_sqrt_ps(dot3(f.tx, f.ty, f.tz, f.tx, f.ty, f.tz));
+  const __m256 ndot = dot3(f.nx, f.ny, f.nz, _mm256_xor_ps(f.tx, sign_mask),
+                           _mm256_xor_ps(f.ty, sign_mask), _mm256_xor_ps(f.tz, sign_mask));
   const __m256 cos_t = _mm256_min_ps(_mm256_max_ps(_mm256_div_ps(ndot, dist), set(1e-4f)), one);
   const __m256 tan_t = _mm256_min_ps(
       _mm256_div_ps(_mm256_sqrt_ps(_mm256_sub_ps(one, _mm256_mul_ps(cos_t, cos_t))), cos_t), set(10.0f));
@@ -194,6 +224,33 @@ SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const fl
           : _mm256_mul_ps(_mm256_mul_ps(k, _mm256_mul_ps(plane, axial)), tan_t);
   r.depth = _mm256_mul_ps(_mm256_sub_ps(dist, _mm256_add_ps(set(c.bias), slope_bias)), set(c.inv_far));
   return r;
+}
+
+// Lanes whose N×N footprint at (sx, sy) lies inside their face's image (pcf_taps_inside), with
+// the footprint's first column/row and fractions.
+struct Footprint {
+  __m256 inside;
+  __m256i x0, y0;
+  __m256 fx, fy;
+};
+SL_AVX2 inline Footprint footprint(const MapLookupConsts& c, int pcf, __m256 sx, __m256 sy, __m256i face) {
+  const __m256 half_px = set(0.5f);
+  const __m256 gx = _mm256_sub_ps(sx, half_px), gy = _mm256_sub_ps(sy, half_px);
+  const __m256i bx = floor_i(gx), by = floor_i(gy);
+  Footprint fp;
+  fp.fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(bx));
+  fp.fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(by));
+  const __m256i half = _mm256_set1_epi32((pcf - 1) / 2), n = _mm256_set1_epi32(pcf);
+  fp.x0 = _mm256_sub_epi32(bx, half);
+  fp.y0 = _mm256_sub_epi32(by, half);
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const __m256i neg1 = _mm256_set1_epi32(-1);
+  // x0 >= 0, y0 >= 0, x0 + pcf < w, y0 + pcf < h.
+  fp.inside = _mm256_castsi256_ps(_mm256_and_si256(
+      _mm256_and_si256(_mm256_cmpgt_epi32(fp.x0, neg1), _mm256_cmpgt_epi32(fp.y0, neg1)),
+      _mm256_and_si256(_mm256_cmpgt_epi32(w, _mm256_add_epi32(fp.x0, n)),
+                       _mm256_cmpgt_epi32(h, _mm256_add_epi32(fp.y0, n)))));
+  return fp;
 }
 
 // Mask of lanes that look nothing up: 1 uncovered, 0 otherwise.
@@ -236,31 +293,20 @@ SL_AVX2 void depth1_avx2(const MapLookupConsts& c, const float* pos, const float
 SL_AVX2 void pcf_avx2(const MapLookupConsts& c, int pcf, const float* pos, const float* nrm,
                       const uint8_t* covered, float* mask, uint32_t* texels, Receivers8& rest) {
   const R8 r = receivers(c, pos, nrm, covered);
-  // for_each_pcf_tap's footprint: columns bx - half .. bx - half + pcf, weights (1 - fx, 1, …,
-  // 1, fx)/pcf per axis, rows likewise.
-  const __m256 half_px = set(0.5f);
-  const __m256 gx = _mm256_sub_ps(r.sx, half_px), gy = _mm256_sub_ps(r.sy, half_px);
-  const __m256i bx = floor_i(gx), by = floor_i(gy);
-  const __m256 fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(bx)), fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(by));
-  const __m256i half = _mm256_set1_epi32((pcf - 1) / 2), n = _mm256_set1_epi32(pcf);
-  const __m256i x0 = _mm256_sub_epi32(bx, half), y0 = _mm256_sub_epi32(by, half);
-  const __m256i w = lane_i(c.width, r.face), h = lane_i(c.height, r.face);
-  const __m256i neg1 = _mm256_set1_epi32(-1);
-  // Inside: x0 >= 0, y0 >= 0, x0 + pcf < w, y0 + pcf < h (pcf_taps_inside).
-  const __m256i inside_i = _mm256_and_si256(
-      _mm256_and_si256(_mm256_cmpgt_epi32(x0, neg1), _mm256_cmpgt_epi32(y0, neg1)),
-      _mm256_and_si256(_mm256_cmpgt_epi32(w, _mm256_add_epi32(x0, n)),
-                       _mm256_cmpgt_epi32(h, _mm256_add_epi32(y0, n))));
-  const __m256 vec = _mm256_and_ps(r.active, _mm256_castsi256_ps(inside_i));
+  // for_each_pcf_tap's footprint: columns x0 .. x0 + pcf, weights (1 - fx, 1, …, 1, fx)/pcf
+  // per axis, rows likewise, summed row by row in the scalar walk's order.
+  const Footprint fp = footprint(c, pcf, r.sx, r.sy, r.face);
+  const __m256 vec = _mm256_and_ps(r.active, fp.inside);
   const __m256 one = set(1.0f), zero = _mm256_setzero_ps();
   const __m256 norm = set(1.0f / float(pcf * pcf));
+  const __m256i w = lane_i(c.width, r.face);
   __m256 lit = zero, total = zero;
-  const __m256i origin = _mm256_add_epi32(lane_i(c.offset, r.face), x0);
+  const __m256i origin = _mm256_add_epi32(lane_i(c.offset, r.face), fp.x0);
   for (int j = 0; j <= pcf; ++j) {
-    const __m256 wy = j == 0 ? _mm256_sub_ps(one, fy) : (j == pcf ? fy : one);
-    const __m256i row = _mm256_add_epi32(origin, _mm256_mullo_epi32(_mm256_add_epi32(y0, _mm256_set1_epi32(j)), w));
+    const __m256 wy = j == 0 ? _mm256_sub_ps(one, fp.fy) : (j == pcf ? fp.fy : one);
+    const __m256i row = _mm256_add_epi32(origin, _mm256_mullo_epi32(_mm256_add_epi32(fp.y0, _mm256_set1_epi32(j)), w));
     for (int i = 0; i <= pcf; ++i) {
-      const __m256 wx = i == 0 ? _mm256_sub_ps(one, fx) : (i == pcf ? fx : one);
+      const __m256 wx = i == 0 ? _mm256_sub_ps(one, fp.fx) : (i == pcf ? fp.fx : one);
       const __m256 wt = _mm256_mul_ps(_mm256_mul_ps(wx, wy), norm);
       const __m256 tap = _mm256_mask_i32gather_ps(zero, c.depth_base,
                                                   _mm256_add_epi32(row, _mm256_set1_epi32(i)), vec, 4);
@@ -283,6 +329,36 @@ SL_AVX2 void pcf_avx2(const MapLookupConsts& c, int pcf, const float* pos, const
   _mm256_store_si256(reinterpret_cast<__m256i*>(rest.active), _mm256_castps_si256(left));
 }
 
+SL_AVX2 Faces8 faces8_avx2(const MapLookupConsts& c, int cross_pcf, const float* pos,
+                           const float* nrm, const uint8_t* covered, Receivers8& rest) {
+  const Front f = front(c, pos, nrm, covered);
+  Faces8 out;
+  const int active_bits = _mm256_movemask_ps(f.active);
+  out.looked_up = uint32_t(__builtin_popcount(unsigned(active_bits)));
+  // OR of 1 << face over the active lanes.
+  const __m256i bit = _mm256_and_si256(_mm256_sllv_epi32(_mm256_set1_epi32(1), f.face),
+                                       _mm256_castps_si256(f.active));
+  __m128i o = _mm_or_si128(_mm256_castsi256_si128(bit), _mm256_extracti128_si256(bit, 1));
+  o = _mm_or_si128(o, _mm_shuffle_epi32(o, 0x4E));
+  o = _mm_or_si128(o, _mm_shuffle_epi32(o, 0xB1));
+  out.bits = uint32_t(_mm_cvtsi128_si32(o));
+  out.rest = false;
+  if (cross_pcf > 1 && active_bits) {
+    __m256 sx, sy, axial;
+    texel_coords(c, f, sx, sy, axial);
+    const Footprint fp = footprint(c, cross_pcf, sx, sy, f.face);
+    const __m256 left = _mm256_andnot_ps(fp.inside, f.active);
+    if (_mm256_movemask_ps(left)) {
+      out.rest = true;
+      _mm256_store_ps(rest.sx, sx);
+      _mm256_store_ps(rest.sy, sy);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(rest.face), f.face);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(rest.active), _mm256_castps_si256(left));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 #endif
 
@@ -296,6 +372,13 @@ Receivers8Fn receivers8_simd() {
 Depth1Fn depth1_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return depth1_avx2;
+#endif
+  return nullptr;
+}
+
+Faces8Fn faces8_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return faces8_avx2;
 #endif
   return nullptr;
 }

@@ -5,7 +5,8 @@
 //              make_receiver() computes them (techniques/map_receiver.h), for any filter;
 //   depth1     the one-tap compare (pcf=1);
 //   pcf        the N×N bilinear-weighted compare for pixels whose footprint lies inside their
-//              face's image; the others are left to the scalar tap walk.
+//              face's image; the others are left to the scalar tap walk;
+//   faces8     the faces some pixel's lookup needs (the pipeline's stage 2).
 // Each performs the same IEEE operations in the same order as the scalar lookup (its oracle), so
 // masks and texel indices are bit-identical: tests/techniques/lookup_simd_test.cpp checks them at
 // the comparison's threshold, and whole renders with SHADOWLAB_SCALAR=1 (which disables these
@@ -61,9 +62,21 @@ using Depth1Fn = void (*)(const MapLookupConsts& c, const float* pos, const floa
 using PcfFn = void (*)(const MapLookupConsts& c, int pcf, const float* pos, const float* nrm,
                        const uint8_t* covered, float* mask, uint32_t* texels, Receivers8& rest);
 
+// Faces needed by 8 pixels: `bits` has bit f set when an active lane's face is f; `looked_up`
+// counts the active lanes. With cross_pcf > 1 (SeamMode::Cross), lanes whose footprint leaves
+// their face are returned in `rest` (rest.active, sx, sy, face; `rest` true when any) for the
+// scalar tap walk.
+struct Faces8 {
+  uint32_t bits = 0, looked_up = 0;
+  bool rest = false;
+};
+using Faces8Fn = Faces8 (*)(const MapLookupConsts& c, int cross_pcf, const float* pos,
+                            const float* nrm, const uint8_t* covered, Receivers8& rest);
+
 // The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 Receivers8Fn receivers8_simd();
 Depth1Fn depth1_simd();
 PcfFn pcf_simd();
+Faces8Fn faces8_simd();
 
 }  // namespace shadowlab
