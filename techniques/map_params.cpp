@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "techniques/map_filter.h"
 
 namespace shadowlab {
 
@@ -31,28 +32,8 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
   p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
   p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
   p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
-  if (filter == MapFilter::Depth) {
-    p.pcf = r.get_int("pcf", p.pcf, 1, 15);
-    if (p.pcf > 1 && p.pcf % 2 == 0)
-      throw InputError(flag, n + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
-    const std::string seams =
-        r.get_choice("seams", p.seams == SeamMode::Cross ? "cross" : "guard", {"guard", "cross"});
-    p.seams = seams == "cross" ? SeamMode::Cross : SeamMode::Guard;
-  } else {
-    p.blur = r.get_int("blur", p.blur, 1, 63);
-    if (p.blur % 2 == 0)
-      throw InputError(flag, n + ": 'blur' must be odd, got " + std::to_string(p.blur));
-  }
-  if (filter == MapFilter::Variance) {
-    p.min_variance = r.get_double("min_variance", p.min_variance, 0.0, 1e6);
-    p.bleed = r.get_double("bleed", p.bleed, 0.0, 0.99);
-    p.maxdepth_eps = r.get_double("maxdepth_eps", p.maxdepth_eps, 0.0, 1e3);
-    p.slope_moment = r.get_bool("slope_moment", p.slope_moment);
-    p.moments_fp32 = r.get_bool("fp32", p.moments_fp32);
-  }
-  if (filter == MapFilter::Exponential)
-    // exp(c·Δ) with Δ <= 1 must stay below DBL_MAX (ln ≈ 709.8) in the filter; see moment_filter.h.
-    p.c = r.get_double("c", p.c, 0.01, 700.0);
+  // The filter's own keys (techniques/map_filter.h).
+  map_filter_ops(filter).parse_keys(r, n, flag, p);
   r.reject_unknown();
   return p;
 }
@@ -60,23 +41,9 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
 std::string map_keys_text(FaceLayoutKind layout, MapFilter filter) {
   const MapParams p = default_map_params(layout, filter);
   char b[256];
-  std::snprintf(b, sizeof b, "res=%d,bias=%g,slope=%g,normal=%g,depth=f32", p.res, double(p.bias),
+  std::snprintf(b, sizeof b, "res=%d,bias=%g,slope=%g,normal=%g,depth=f32,", p.res, double(p.bias),
                 double(p.slope), double(p.normal));
-  std::string s = b;
-  if (filter == MapFilter::Depth)
-    s += std::string(",pcf=1,seams=") + (p.seams == SeamMode::Cross ? "cross" : "guard");
-  else
-    s += ",blur=" + std::to_string(p.blur);
-  if (filter == MapFilter::Variance) {
-    std::snprintf(b, sizeof b, ",min_variance=%g,bleed=%g,maxdepth_eps=%g,slope_moment=0,fp32=0",
-                  p.min_variance, p.bleed, p.maxdepth_eps);
-    s += b;
-  }
-  if (filter == MapFilter::Exponential) {
-    std::snprintf(b, sizeof b, ",c=%g", p.c);
-    s += b;
-  }
-  return s;
+  return b + map_filter_ops(filter).keys_text(p);
 }
 
 int map_guard(const MapParams& p) {

@@ -26,6 +26,24 @@ enum class MapFilter { Depth, Variance, Exponential };
 //          the face that owns it. Depth compare only.
 enum class SeamMode { Guard, Cross };
 
+// Keys of the variance filter (vsm).
+struct VsmKeys {
+  double min_variance = 1e-6;  // variance floor, m² (1 mm standard deviation)
+  double bleed = 0.0;          // light-bleeding reduction, p -> linstep(bleed, 1, p)
+  double maxdepth_eps = 0.0;   // (Krave) > 0 stores the footprint's max depth; a receiver
+                               // deeper than max + eps (m) is fully shadowed
+  bool slope_moment = false;   // (Krave) M2 = d² + ¼((∂d/∂x)² + (∂d/∂y)²) per texel
+  bool fp32 = false;           // fp32 moments (d, d²) filtered in float — the naive form, kept
+                               // to measure its cancellation; default: double filter, stored
+                               // as (mean, variance)
+};
+
+// Keys of the exponential filter (esm).
+struct EsmKeys {
+  double c = 200.0;  // exponent on normalised distance (|p - L| / far); the log-space filter
+                     // allows any c <= 700 (README: why 200)
+};
+
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
   MapFilter filter = MapFilter::Depth;
@@ -41,16 +59,8 @@ struct MapParams {
   SeamMode seams = SeamMode::Guard;  // depth: default Cross on the cube layout (csm's own
                                      // mechanism, kept byte for byte), Guard elsewhere
   int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)
-  double min_variance = 1e-6;  // VSM: variance floor, m² (1 mm standard deviation)
-  double bleed = 0.0;          // VSM: light-bleeding reduction, p -> linstep(bleed, 1, p)
-  double maxdepth_eps = 0.0;   // VSM (Krave): > 0 stores the footprint's max depth; a receiver
-                               // deeper than max + eps (m) is fully shadowed
-  bool slope_moment = false;   // VSM (Krave): M2 = d² + ¼((∂d/∂x)² + (∂d/∂y)²) per texel
-  bool moments_fp32 = false;   // VSM: fp32 moments (d, d²) filtered in float — the naive form,
-                               // kept to measure its cancellation; default: double filter,
-                               // stored as (mean, variance)
-  double c = 200.0;            // ESM exponent on normalised distance (|p - L| / far); the
-                               // log-space filter allows any c <= 700 (README: why 200)
+  VsmKeys vsm;            // the variance filter's own keys (techniques/variance_map.cpp)
+  EsmKeys esm;            // the exponential filter's own keys (techniques/exponential_map.cpp)
 };
 
 // The defaults of a layout × filter before any key is read (bias and slope are 0 for the

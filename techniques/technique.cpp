@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "techniques/light_map.h"
+#include "techniques/map_filter.h"
 #include "techniques/ray_traced.h"
 
 namespace shadowlab {
@@ -24,22 +25,12 @@ struct LayoutName {
   FaceLayoutKind kind;
   const char* what;
 };
-struct FilterName {
-  const char* suffix;
-  MapFilter filter;
-  const char* what;
-};
-
-// The naming rule (README "Techniques"): a layout letter + a filter. Every pair is a technique.
+// The naming rule (README "Techniques"): a layout letter + a filter's suffix. Every pair of a
+// layout and a filter of map_filters() (techniques/map_filter.h) is a technique.
 const LayoutName kLayouts[] = {
     {'c', FaceLayoutKind::Cube, "cube (6 faces of 90°)"},
     {'t', FaceLayoutKind::Tetrahedron, "tetrahedral (4 faces in quadrants of one ~6·res² texture)"},
     {'p', FaceLayoutKind::Projector, "projector (one face over the slide projector's frustum; needs --slide)"},
-};
-const FilterName kFilters[] = {
-    {"sm", MapFilter::Depth, "shadow map, depth compare with PCF"},
-    {"vsm", MapFilter::Variance, "variance shadow map"},
-    {"esm", MapFilter::Exponential, "exponential shadow map"},
 };
 
 std::vector<Entry> make_registry() {
@@ -48,12 +39,12 @@ std::vector<Entry> make_registry() {
                   [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
                   run_ray_traced});
   for (const LayoutName& l : kLayouts)
-    for (const FilterName& f : kFilters) {
+    for (const MapFilterOps* f : map_filters()) {
       const FaceLayoutKind layout = l.kind;
-      const MapFilter filter = f.filter;
+      const MapFilter filter = f->id;
       rows.push_back(
-          {std::string(1, l.letter) + f.suffix,
-           std::string(f.what) + " on the " + l.what + " layout; keys: " + map_keys_text(layout, filter),
+          {std::string(1, l.letter) + f->suffix,
+           std::string(f->what) + " on the " + l.what + " layout; keys: " + map_keys_text(layout, filter),
            [layout, filter](const TechniqueSpec& s, const char* flag) {
              parse_map_params(s, layout, filter, flag);
            },

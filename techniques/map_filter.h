@@ -1,0 +1,50 @@
+#pragma once
+// A filter of the light-map pipeline (techniques/light_map.h): what a technique adds to a layout.
+// Each filter lives in one file (depth_compare.cpp, variance_map.cpp, exponential_map.cpp) that
+// defines its row below: its own keys, its store + blur stage and its lookup. The registry
+// (techniques/technique.cpp) combines every layout with every row of map_filters(), so a new
+// filter is one file, one field in MapParams for its keys, and one line in map_filters().
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/gbuffer.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "techniques/map_params.h"
+#include "techniques/technique_spec.h"
+
+namespace shadowlab {
+
+struct LightMap;
+
+struct MapFilterOps {
+  const char* suffix;  // the technique name's filter part: c + "vsm" = cvsm
+  const char* what;    // one line for --list-techniques
+  MapFilter id;
+  // Reads the filter's own keys into p (the shared keys are read by parse_map_params).
+  void (*parse_keys)(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
+  // "key=default,…" of the filter's own keys, from the defaults in p.
+  std::string (*keys_text)(const MapParams& p);
+  // Stages 4–5: the filter's transform and blur of the rendered faces into map.a/b/max_depth.
+  void (*filter)(const MapParams& p, LightMap& map);
+  // Stage 6: every GBuffer pixel's visibility (and texel index when texels is given).
+  void (*lookup)(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
+                 ImageF& mask, ImageU32* texels);
+  // Work counts (README "Work counts"): map texels one lookup reads, the bytes per such tap,
+  // and the float planes the filter stores per texel.
+  uint64_t (*taps_per_lookup)(const MapParams& p);
+  uint64_t (*tap_bytes)(const MapParams& p);
+  uint64_t (*stored_planes)(const MapParams& p);
+};
+
+extern const MapFilterOps kDepthCompare;     // sm:  depth compare with PCF
+extern const MapFilterOps kVarianceMap;      // vsm: variance shadow map
+extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
+
+// Every filter, in registry order.
+const std::vector<const MapFilterOps*>& map_filters();
+// The row of a filter id.
+const MapFilterOps& map_filter_ops(MapFilter id);
+
+}  // namespace shadowlab

@@ -1,0 +1,71 @@
+#pragma once
+// The lookup loop every filter of the light-map pipeline runs (techniques/map_filter.h): the
+// AVX2 receiver kernels in front where they apply (techniques/map_lookup_simd.h), the scalar
+// pixel loop (their oracle, techniques/map_receiver.h) for the rest.
+#include <algorithm>
+
+#include "techniques/light_map.h"
+#include "techniques/map_lookup_simd.h"
+#include "techniques/map_receiver.h"
+
+namespace shadowlab {
+
+// The receiver of lane k of a SIMD group.
+inline Receiver lane_receiver(const Receivers8& r, int k) {
+  Receiver rc;
+  rc.face = r.face[k];
+  rc.st = vec2(r.sx[k], r.sy[k]);
+  rc.depth = r.depth[k];
+  rc.texel = uint32_t(r.texel[k]);
+  return rc;
+}
+
+// Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
+// of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
+// compare in vector form too (footprints inside a face); the scalar loop takes the rest.
+template <class Visibility>
+void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
+                   ImageF& mask, ImageU32* texels, const Visibility& visibility) {
+  const FaceLayout& L = map.layout;
+  const Receivers8Fn receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
+  if (!receivers8) {
+    lookup_faces(scene, g, L, p, mask, texels, visibility, [](size_t, size_t) { return size_t(0); });
+    return;
+  }
+  const MapLookupConsts c = map_lookup_consts(scene, L, p, map.dist.distance);
+  const bool depth = p.filter == MapFilter::Depth && c.gather_ok;
+  const Depth1Fn depth1 = depth && p.pcf <= 1 ? depth1_simd() : nullptr;
+  const PcfFn pcf = depth && p.pcf > 1 ? pcf_simd() : nullptr;
+  lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
+    size_t i = b;
+    for (; i + 8 <= e; i += 8) {
+      const float* pos = &g.position[i].x;
+      const float* nrm = &g.geo_normal[i].x;
+      float* m = &mask.data[i];
+      uint32_t* t = texels ? &texels->data[i] : nullptr;
+      if (depth1) {
+        depth1(c, pos, nrm, &g.covered[i], m, t);
+        continue;
+      }
+      Receivers8 r;
+      if (pcf) {
+        pcf(c, p.pcf, pos, nrm, &g.covered[i], m, t, r);
+      } else {
+        receivers8(c, pos, nrm, &g.covered[i], r);
+        for (int k = 0; k < 8; ++k) {
+          m[k] = r.mask[k];
+          if (t) t[k] = uint32_t(r.texel[k]);
+        }
+      }
+      for (int k = 0; k < 8; ++k) {
+        if (!r.active[k]) continue;
+        const Receiver rc = lane_receiver(r, k);
+        m[k] = std::clamp(visibility(rc), 0.0f, 1.0f);
+        if (t) t[k] = rc.texel;
+      }
+    }
+    return i - b;
+  });
+}
+
+}  // namespace shadowlab
