@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "core/parallel.h"
 
@@ -95,24 +96,138 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
   });
 }
 
+// The fused separable box (the fast path of filter_moments_double and filter_esm_log): per
+// chunk of output rows, each input row's k-wide horizontal sums are computed once into a small
+// chunk buffer, then each output row sums its k rows of that buffer. Every output is the same
+// sequence of double additions as box_mean's two passes (left to right, then top to bottom, then
+// × 1/k²), so the results are bit-identical to it; the loops run over x, which the compiler
+// vectorizes without reordering any one texel's additions.
+
+// out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
+// texels on each side).
+__attribute__((target_clones("avx2", "default"))) void hsum_row(const double* ext, int w, int k,
+                                                               double* out) {
+  for (int x = 0; x < w; ++x) out[x] = 0.0;
+  for (int i = 0; i < k; ++i)
+    for (int x = 0; x < w; ++x) out[x] += ext[x + i];
+}
+
+// dst[x] = (rows[0][x] + rows[1][x] + … + rows[k-1][x]) × inv, added in row order.
+__attribute__((target_clones("avx2", "default"))) void vsum_rows(const double* const* rows, int w,
+                                                                int k, double inv, double* dst) {
+  for (int x = 0; x < w; ++x) dst[x] = rows[0][x];
+  for (int j = 1; j < k; ++j)
+    for (int x = 0; x < w; ++x) dst[x] += rows[j][x];
+  for (int x = 0; x < w; ++x) dst[x] *= inv;
+}
+
+// Row r of raw_moments without the slope term: m1 = d, m2 = d² (d = finite_dist).
+__attribute__((target_clones("avx2", "default"))) void moment_row(const float* row, int w,
+                                                                 double* m1, double* m2) {
+  for (int x = 0; x < w; ++x) {
+    const double d = double(row[x] < 1.0f ? row[x] : 1.0f);
+    m1[x] = d;
+    m2[x] = d * d;
+  }
+}
+
+// Mean and variance floats of filtered moment rows (filter_moments_double's storage).
+__attribute__((target_clones("avx2", "default"))) void mean_variance_row(const double* m1,
+                                                                        const double* m2, int w,
+                                                                        float* mean, float* var) {
+  for (int x = 0; x < w; ++x) {
+    mean[x] = float(m1[x]);
+    const double v = m2[x] - m1[x] * m1[x];
+    var[x] = float(v > 0.0 ? v : 0.0);
+  }
+}
+
+// Fills the r texels on each side of an extended row with its edge values (clamp to edge).
+inline void extend_row(double* ext, int w, int r) {
+  for (int i = 0; i < r; ++i) {
+    ext[i] = ext[r];
+    ext[size_t(w + r + i)] = ext[size_t(w + r - 1)];
+  }
+}
+
+// Runs the fused box over `planes` planes. make_row(y, ext) fills the extended input rows of
+// input row y (planes × (w + k − 1) doubles, plane after plane); finish_row(y, out) receives
+// the filtered rows (planes × w doubles).
+template <class MakeRow, class FinishRow>
+void fused_box(int w, int h, int k, int planes, const MakeRow& make_row,
+               const FinishRow& finish_row) {
+  const int r = k / 2;
+  const size_t ew = size_t(w) + size_t(k) - 1;
+  const double inv = 1.0 / double(k * k);
+  parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
+    const int lo = std::max(0, int(b) - r), hi = std::min(h - 1, int(e) - 1 + r);
+    const size_t rows = size_t(hi - lo + 1);
+    // One uninitialized block (every value is written before it is read): a zero-filled
+    // std::vector here was a sixth of the filter's time.
+    const size_t n_ext = size_t(planes) * ew, n_hsum = rows * size_t(planes) * size_t(w);
+    const std::unique_ptr<double[]> buf(new double[n_ext + n_hsum + size_t(planes) * size_t(w)]);
+    double* const ext = buf.get();
+    double* const hsum = ext + n_ext;
+    double* const out = hsum + n_hsum;
+    for (int y = lo; y <= hi; ++y) {
+      make_row(y, ext);
+      for (int c = 0; c < planes; ++c)
+        hsum_row(ext + size_t(c) * ew, w, k,
+                 hsum + (size_t(y - lo) * size_t(planes) + size_t(c)) * size_t(w));
+    }
+    std::vector<const double*> window(static_cast<size_t>(k));
+    for (size_t y = b; y < e; ++y) {
+      for (int c = 0; c < planes; ++c) {
+        for (int j = -r; j <= r; ++j) {
+          const int yy = std::clamp(int(y) + j, 0, h - 1);
+          window[size_t(j + r)] = hsum + (size_t(yy - lo) * size_t(planes) + size_t(c)) * size_t(w);
+        }
+        vsum_rows(window.data(), w, k, inv, out + size_t(c) * size_t(w));
+      }
+      finish_row(y, out);
+    }
+  });
+}
+
 }  // namespace
 
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
                            std::vector<float>& mean, std::vector<float>& variance,
-                           FilterScratch& scratch) {
-  std::vector<double>* in = scratch.in;
-  std::vector<double>* out = scratch.out;
-  raw_moments<double>(dist, w, h, slope_term, in[0], in[1]);
-  box_mean<double, 2>(in, w, h, k, scratch.tmp, out);
+                           FilterScratch&) {
   const size_t n = size_t(w) * size_t(h);
   mean.resize(n);
   variance.resize(n);
-  parallel_for_chunks(n, 1 << 14, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      mean[i] = float(out[0][i]);
-      variance[i] = float(std::max(0.0, out[1][i] - out[0][i] * out[0][i]));
-    }
-  });
+  const int r = k / 2;
+  const size_t ew = size_t(w) + size_t(k) - 1;
+  auto at = [&](int x, int y) {
+    return double(finite_dist(dist[size_t(std::clamp(y, 0, h - 1)) * size_t(w) +
+                                   size_t(std::clamp(x, 0, w - 1))]));
+  };
+  fused_box(
+      w, h, k, 2,
+      [&](int y, double* ext) {
+        // raw_moments' values of row y, extended by r clamped texels on each side.
+        if (!slope_term) {
+          moment_row(dist + size_t(y) * size_t(w), w, ext + r, ext + ew + size_t(r));
+          extend_row(ext, w, r);
+          extend_row(ext + ew, w, r);
+          return;
+        }
+        for (int x = -r; x < w + r; ++x) {
+          const double d = at(x, y);
+          double m2 = d * d;
+          const int xc = std::clamp(x, 0, w - 1);
+          const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
+          const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
+          m2 += double(0.25 * (dx * dx + dy * dy));
+          ext[size_t(x + r)] = d;
+          ext[ew + size_t(x + r)] = m2;
+        }
+      },
+      [&](size_t y, const double* out) {
+        mean_variance_row(out, out + w, w, mean.data() + y * size_t(w),
+                          variance.data() + y * size_t(w));
+      });
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
@@ -152,7 +267,7 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 }
 
 void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
-                    FilterScratch& scratch) {
+                    FilterScratch&) {
   const size_t n = size_t(w) * size_t(h);
   // The image's smallest distance, a fixed-order reduction over per-row minima.
   std::vector<float> row_min(static_cast<size_t>(h));
@@ -165,17 +280,19 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
   });
   double d_min = 1.0;
   for (float m : row_min) d_min = std::min(d_min, double(m));
-  std::vector<double>* in = scratch.in;
-  std::vector<double>* filtered = scratch.out;
-  in[0].resize(n);
-  parallel_for_chunks(n, 1 << 14, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) in[0][i] = std::exp(c * (double(finite_dist(dist[i])) - d_min));
-  });
-  box_mean<double, 1>(in, w, h, k, scratch.tmp, filtered);
   out.resize(n);
-  parallel_for_chunks(n, 1 << 14, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) out[i] = float(c * d_min + std::log(filtered[0][i]));
-  });
+  const int r = k / 2;
+  fused_box(
+      w, h, k, 1,
+      [&](int y, double* ext) {
+        const float* row = dist + size_t(y) * size_t(w);
+        for (int x = -r; x < w + r; ++x)
+          ext[size_t(x + r)] = std::exp(c * (double(finite_dist(row[std::clamp(x, 0, w - 1)])) - d_min));
+      },
+      [&](size_t y, const double* filtered) {
+        float* o = out.data() + y * size_t(w);
+        for (int x = 0; x < w; ++x) o[x] = float(c * d_min + std::log(filtered[x]));
+      });
 }
 
 }  // namespace shadowlab
