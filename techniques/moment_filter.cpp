@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "core/exp_log.h"
 #include "core/parallel.h"
 
 namespace shadowlab {
@@ -140,6 +141,23 @@ __attribute__((target_clones("avx2", "default"))) void mean_variance_row(const d
     const double v = m2[x] - m1[x] * m1[x];
     var[x] = float(v > 0.0 ? v : 0.0);
   }
+}
+
+// ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist (core/exp_log.h:
+// the vectorized loop gives the scalar bits). Two loops: with the float → double conversion in
+// the same loop the compiler kept it scalar.
+__attribute__((target_clones("avx2", "default"))) void esm_exp_row(const float* row, int w,
+                                                                  double c, double d_min,
+                                                                  double* out) {
+  for (int x = 0; x < w; ++x) out[x] = double(row[x] < 1.0f ? row[x] : 1.0f);
+  for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
+}
+
+// ESM's occluder term of one filtered row: c·d_min + ln(filtered).
+__attribute__((target_clones("avx2", "default"))) void esm_log_row(const double* filtered, int w,
+                                                                  double c, double d_min,
+                                                                  float* out) {
+  for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_d(filtered[x]));
 }
 
 // Fills the r texels on each side of an extended row with its edge values (clamp to edge).
@@ -285,13 +303,11 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
   fused_box(
       w, h, k, 1,
       [&](int y, double* ext) {
-        const float* row = dist + size_t(y) * size_t(w);
-        for (int x = -r; x < w + r; ++x)
-          ext[size_t(x + r)] = std::exp(c * (double(finite_dist(row[std::clamp(x, 0, w - 1)])) - d_min));
+        esm_exp_row(dist + size_t(y) * size_t(w), w, c, d_min, ext + r);
+        extend_row(ext, w, r);
       },
       [&](size_t y, const double* filtered) {
-        float* o = out.data() + y * size_t(w);
-        for (int x = 0; x < w; ++x) o[x] = float(c * d_min + std::log(filtered[x]));
+        esm_log_row(filtered, w, c, d_min, out.data() + y * size_t(w));
       });
 }
 

@@ -34,7 +34,8 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // occluder depth, for any c in (0, 700]. Computed as c·d_min + log(box_k(exp(c·(d − d_min))))
 // in double with d_min the image's smallest distance, so every exponential lies in [1, e^c]
 // (finite in double for c <= 709) and no sum cancels; the naive fp32 exp(c·d) overflows once
-// c·d > 88.7.
+// c·d > 88.7. exp and ln are core/exp_log.h's (within 2 ulp, vectorized, the same bits on any
+// x86-64).
 void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
                     FilterScratch& scratch);
 

@@ -1,0 +1,66 @@
+// exp_d and log_d (core/exp_log.h) against long double, and their vectorized loops against
+// the scalar calls, bit for bit.
+#include "core/exp_log.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace shadowlab {
+namespace {
+
+// Scalar calls: noinline keeps them out of any vectorized loop.
+__attribute__((noinline)) double exp_one(double x) { return exp_d(x); }
+__attribute__((noinline)) double log_one(double x) { return log_d(x); }
+
+// The loops the ESM filter runs, compiled for AVX2 and baseline like it.
+__attribute__((target_clones("avx2", "default"))) void exp_loop(const double* x, double* y, int n) {
+  for (int i = 0; i < n; ++i) y[i] = exp_d(x[i]);
+}
+__attribute__((target_clones("avx2", "default"))) void log_loop(const double* x, double* y, int n) {
+  for (int i = 0; i < n; ++i) y[i] = log_d(x[i]);
+}
+
+// Distance in units of the last place of the exact value (long double).
+double ulps(double got, long double exact) {
+  const double e = double(exact);
+  return double(std::fabs((long double)got - exact)) / (std::nextafter(std::fabs(e), INFINITY) - std::fabs(e));
+}
+
+TEST(ExpLog, WithinTwoUlpOfLongDouble) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> ux(-700.0, 700.0), ul(-690.0, 700.0);
+  double worst_exp = 0.0, worst_log = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const double x = i < 4 ? double(i) * 0.5 : ux(rng);
+    worst_exp = std::max(worst_exp, ulps(exp_one(x), std::exp((long double)x)));
+    const double y = std::exp(ul(rng));  // log's arguments over [e^-690, e^700]
+    worst_log = std::max(worst_log, ulps(log_one(y), std::log((long double)y)));
+  }
+  // Exact points.
+  EXPECT_EQ(exp_one(0.0), 1.0);
+  EXPECT_EQ(log_one(1.0), 0.0);
+  EXPECT_LE(worst_exp, 2.0);
+  EXPECT_LE(worst_log, 2.0);
+  RecordProperty("worst_exp_ulp", std::to_string(worst_exp));
+  RecordProperty("worst_log_ulp", std::to_string(worst_log));
+}
+
+TEST(ExpLog, VectorizedLoopsGiveTheScalarBits) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 700.0);
+  const int n = 4099;  // not a multiple of any vector width
+  std::vector<double> x(n), y(n), z(n);
+  for (double& v : x) v = u(rng);
+  exp_loop(x.data(), y.data(), n);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&y[i], &(z[i] = exp_one(x[i])), 8), 0) << x[i];
+  for (double& v : x) v = std::exp(u(rng));
+  log_loop(x.data(), y.data(), n);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&y[i], &(z[i] = log_one(x[i])), 8), 0) << x[i];
+}
+
+}  // namespace
+}  // namespace shadowlab
