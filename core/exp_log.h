@@ -1,6 +1,7 @@
 #pragma once
-// Branch-free exp and log in double, for loops the compiler vectorizes (the ESM filter runs one
-// of each per texel; glibc's scalar calls were most of its time). Only IEEE multiply, add,
+// Branch-free exp and log in double, and exp in float, for loops the compiler vectorizes (the
+// ESM filter runs one exp and one log per texel, its lookup four exps per pixel; glibc's scalar
+// calls were most of their time). Only IEEE multiply, add,
 // subtract and divide, integer adds and shifts on the bit patterns, in a fixed order: a loop of
 // them compiled for AVX2 gives the same bits as the scalar calls, on any x86-64 (no libm, no
 // FMA: the build has -ffp-contract=off). Accuracy: within 2 ulp of the exact value on the
@@ -71,6 +72,29 @@ inline double log_d(double x) {
   constexpr double kLn2Hi = 0.693147180369123816490;
   constexpr double kLn2Lo = 1.90821492927058770002e-10;
   return e * kLn2Hi + (e * kLn2Lo + ln_m);
+}
+
+// e^x in float for x in [-87, 88] (the ESM lookup clamps its exponents to [-87, 80]): within
+// 2 ulp of the exact value; 8 lanes per AVX2 instruction where double gives 4.
+inline float exp_f(float x) {
+  constexpr float kLog2e = 1.44269504f;
+  constexpr float kShifter = 12582912.0f;  // 1.5 · 2^23
+  constexpr float kLn2Hi = 0.693359375f;   // 0x3F318000: n·kLn2Hi exact for |n| < 2^8
+  constexpr float kLn2Lo = -2.12194440e-4f;
+  const float t = x * kLog2e + kShifter;
+  const float n = t - kShifter;
+  const float r = (x - n * kLn2Hi) - n * kLn2Lo;
+  // e^r to r^7 (|r| <= 0.35: truncation below 6e-9), Horner.
+  float p = 1.0f / 5040.0f;
+  p = p * r + 1.0f / 720.0f;
+  p = p * r + 1.0f / 120.0f;
+  p = p * r + 1.0f / 24.0f;
+  p = p * r + 1.0f / 6.0f;
+  p = p * r + 0.5f;
+  p = p * r + 1.0f;
+  p = p * r + 1.0f;
+  const int32_t ni = std::bit_cast<int32_t>(t) - std::bit_cast<int32_t>(kShifter);
+  return std::bit_cast<float>(std::bit_cast<int32_t>(p) + (ni << 23));
 }
 
 }  // namespace shadowlab

@@ -20,12 +20,21 @@ inline Receiver lane_receiver(const Receivers8& r, int k) {
   return rc;
 }
 
+// No batch form: lanes of a SIMD group run `visibility` one by one.
+struct NoBatch {
+  static constexpr bool kEnabled = false;
+  void operator()(const Receivers8&, float*) const {}
+};
+
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
 // of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
 // compare in vector form too (footprints inside a face); the scalar loop takes the rest.
-template <class Visibility>
+// `batch(receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at once in a
+// loop the compiler vectorizes; it must give `visibility`'s bits lane for lane (its oracle).
+template <class Visibility, class Batch = NoBatch>
 void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
-                   ImageF& mask, ImageU32* texels, const Visibility& visibility) {
+                   ImageF& mask, ImageU32* texels, const Visibility& visibility,
+                   const Batch& batch = Batch{}) {
   const FaceLayout& L = map.layout;
   const Receivers8Fn receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
   if (!receivers8) {
@@ -55,6 +64,15 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
         for (int k = 0; k < 8; ++k) {
           m[k] = r.mask[k];
           if (t) t[k] = uint32_t(r.texel[k]);
+        }
+      }
+      if constexpr (Batch::kEnabled) {
+        if (!pcf) {
+          alignas(32) float vis[8];
+          batch(r, vis);
+          for (int k = 0; k < 8; ++k)
+            if (r.active[k]) m[k] = std::clamp(vis[k], 0.0f, 1.0f);
+          continue;
         }
       }
       for (int k = 0; k < 8; ++k) {

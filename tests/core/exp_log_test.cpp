@@ -15,10 +15,14 @@ namespace {
 // Scalar calls: noinline keeps them out of any vectorized loop.
 __attribute__((noinline)) double exp_one(double x) { return exp_d(x); }
 __attribute__((noinline)) double log_one(double x) { return log_d(x); }
+__attribute__((noinline)) float expf_one(float x) { return exp_f(x); }
 
 // The loops the ESM filter runs, compiled for AVX2 and baseline like it.
 __attribute__((target_clones("avx2", "default"))) void exp_loop(const double* x, double* y, int n) {
   for (int i = 0; i < n; ++i) y[i] = exp_d(x[i]);
+}
+__attribute__((target_clones("avx2", "default"))) void expf_loop(const float* x, float* y, int n) {
+  for (int i = 0; i < n; ++i) y[i] = exp_f(x[i]);
 }
 __attribute__((target_clones("avx2", "default"))) void log_loop(const double* x, double* y, int n) {
   for (int i = 0; i < n; ++i) y[i] = log_d(x[i]);
@@ -49,6 +53,25 @@ TEST(ExpLog, WithinTwoUlpOfLongDouble) {
   RecordProperty("worst_log_ulp", std::to_string(worst_log));
 }
 
+// Float ulps of the exact value.
+double ulps_f(float got, long double exact) {
+  const float e = float(exact);
+  return double(std::fabs((long double)got - exact)) / double(std::nextafter(std::fabs(e), INFINITY) - std::fabs(e));
+}
+
+TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-87.0f, 88.0f);
+  double worst = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const float x = u(rng);
+    worst = std::max(worst, ulps_f(expf_one(x), std::exp((long double)x)));
+  }
+  EXPECT_EQ(expf_one(0.0f), 1.0f);
+  EXPECT_LE(worst, 2.0);
+  RecordProperty("worst_expf_ulp", std::to_string(worst));
+}
+
 TEST(ExpLog, VectorizedLoopsGiveTheScalarBits) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 700.0);
@@ -60,6 +83,14 @@ TEST(ExpLog, VectorizedLoopsGiveTheScalarBits) {
   for (double& v : x) v = std::exp(u(rng));
   log_loop(x.data(), y.data(), n);
   for (int i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&y[i], &(z[i] = log_one(x[i])), 8), 0) << x[i];
+  std::uniform_real_distribution<float> uf(-87.0f, 88.0f);
+  std::vector<float> xf(n), yf(n);
+  for (float& v : xf) v = uf(rng);
+  expf_loop(xf.data(), yf.data(), n);
+  for (int i = 0; i < n; ++i) {
+    const float one = expf_one(xf[i]);
+    ASSERT_EQ(std::memcmp(&yf[i], &one, 4), 0) << xf[i];
+  }
 }
 
 }  // namespace
