@@ -102,27 +102,30 @@ void esm_combine8(const float (*z)[8], const float* fx, const float* fy, const f
     out[k] = esm_combine(z[0][k], z[1][k], z[2][k], z[3][k], fx[k], fy[k], ct[k]);
 }
 
-// 8 lanes at once: the taps per lane, then esm_combine8.
+// 8 lanes at once: the bilinear taps of plane a gathered by the AVX2 kernel (or read lane by
+// lane where it cannot run), then esm_combine8.
 template <class Taps>
 struct EsmBatch {
   static constexpr bool kEnabled = true;
   const Taps& taps_of;
   float cf;
-  void operator()(const Receivers8& r, float* out) const {
-    alignas(32) float z[4][8], fx[8], fy[8], ct[8];
-    for (int k = 0; k < 8; ++k) {
-      float z4[4];
-      // Inactive lanes read nothing (their face may not be rendered); their result is unused.
-      if (r.active[k]) {
-        taps_of(r.face[k], vec2(r.sx[k], r.sy[k]), z4, fx[k], fy[k]);
-      } else {
-        z4[0] = z4[1] = z4[2] = z4[3] = 0.0f;
+  Bilinear8Fn bilinear8;
+  PlaneGather a;
+  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+    alignas(32) float z[1][4][8], fx[8], fy[8], ct[8];
+    if (bilinear8 && a.ok) {
+      bilinear8(c, r, &a, 1, z, fx, fy);
+    } else {
+      for (int k = 0; k < 8; ++k) {
+        float z4[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         fx[k] = fy[k] = 0.0f;
+        // Inactive lanes read nothing (their face may not be rendered); their result is unused.
+        if (r.active[k]) taps_of(r.face[k], vec2(r.sx[k], r.sy[k]), z4, fx[k], fy[k]);
+        for (int i = 0; i < 4; ++i) z[0][i][k] = z4[i];
       }
-      for (int i = 0; i < 4; ++i) z[i][k] = z4[i];
-      ct[k] = cf * r.depth[k];
     }
-    esm_combine8(z, fx, fy, ct, out);
+    for (int k = 0; k < 8; ++k) ct[k] = cf * r.depth[k];
+    esm_combine8(z[0], fx, fy, ct, out);
   }
 };
 
@@ -146,7 +149,8 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     taps(r.face, r.st, z4, fx, fy);
     return esm_combine(z4[0], z4[1], z4[2], z4[3], fx, fy, cf * r.depth);
   };
-  lookup_pixels(scene, g, p, map, mask, texels, visibility, EsmBatch<decltype(taps)>{taps, cf});
+  lookup_pixels(scene, g, p, map, mask, texels, visibility,
+                EsmBatch<decltype(taps)>{taps, cf, bilinear8_simd(), plane_gather(map.a)});
 }
 
 uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear

@@ -23,13 +23,13 @@ inline Receiver lane_receiver(const Receivers8& r, int k) {
 // No batch form: lanes of a SIMD group run `visibility` one by one.
 struct NoBatch {
   static constexpr bool kEnabled = false;
-  void operator()(const Receivers8&, float*) const {}
+  void operator()(const MapLookupConsts&, const Receivers8&, float*) const {}
 };
 
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
 // of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
 // compare in vector form too (footprints inside a face); the scalar loop takes the rest.
-// `batch(receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at once in a
+// `batch(consts, receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at once in a
 // loop the compiler vectorizes; it must give `visibility`'s bits lane for lane (its oracle).
 template <class Visibility, class Batch = NoBatch>
 void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
@@ -69,7 +69,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
       if constexpr (Batch::kEnabled) {
         if (!pcf) {
           alignas(32) float vis[8];
-          batch(r, vis);
+          batch(c, r, vis);
           for (int k = 0; k < 8; ++k)
             if (r.active[k]) m[k] = std::clamp(vis[k], 0.0f, 1.0f);
           continue;

@@ -14,6 +14,26 @@
 
 namespace shadowlab {
 
+PlaneGather plane_gather(const std::vector<std::vector<float>>& planes) {
+  PlaneGather g;
+  uintptr_t lowest = UINTPTR_MAX;
+  for (const std::vector<float>& d : planes)
+    if (!d.empty()) lowest = std::min(lowest, reinterpret_cast<uintptr_t>(d.data()));
+  if (lowest == UINTPTR_MAX || planes.size() > 8) return g;
+  g.ok = true;
+  g.base = reinterpret_cast<const float*>(lowest);
+  for (size_t i = 0; i < planes.size(); ++i) {
+    if (planes[i].empty()) continue;
+    const uintptr_t bytes = reinterpret_cast<uintptr_t>(planes[i].data()) - lowest;
+    const uintptr_t floats = bytes / sizeof(float);
+    if (bytes % sizeof(float) != 0 || floats + planes[i].size() > uintptr_t(INT32_MAX))
+      g.ok = false;
+    else
+      g.offset[i] = int32_t(floats);
+  }
+  return g;
+}
+
 MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, const MapParams& p,
                                   const std::vector<std::vector<float>>& face_depth) {
   SL_CHECK(layout.faces.size() <= 8);
@@ -32,12 +52,11 @@ MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, 
     c.proj_tan_x = fr.tan_x;
     c.proj_tan_y = fr.tan_y;
   }
-  // The lowest rendered face's storage is the gathers' base.
-  uintptr_t lowest = UINTPTR_MAX;
-  for (const std::vector<float>& d : face_depth)
-    if (!d.empty()) lowest = std::min(lowest, reinterpret_cast<uintptr_t>(d.data()));
-  c.gather_ok = lowest != UINTPTR_MAX;
-  if (c.gather_ok) c.depth_base = reinterpret_cast<const float*>(lowest);
+  // The rendered faces' storage, gathered from one base.
+  const PlaneGather pg = plane_gather(face_depth);
+  c.gather_ok = pg.ok;
+  c.depth_base = pg.base;
+  for (int i = 0; i < 8; ++i) c.offset[i] = pg.offset[i];
   for (size_t i = 0; i < layout.faces.size(); ++i) {
     const LightFace& f = layout.faces[i];
     for (int k = 0; k < 3; ++k) {
@@ -54,14 +73,6 @@ MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, 
     c.width[i] = f.width;
     c.height[i] = f.height;
     c.base[i] = int32_t(i * f.texel_count());
-    if (i < face_depth.size() && !face_depth[i].empty()) {
-      const uintptr_t bytes = reinterpret_cast<uintptr_t>(face_depth[i].data()) - lowest;
-      const uintptr_t floats = bytes / sizeof(float);
-      if (bytes % sizeof(float) != 0 || floats + f.texel_count() > uintptr_t(INT32_MAX))
-        c.gather_ok = false;
-      else
-        c.offset[i] = int32_t(floats);
-    }
   }
   return c;
 }
@@ -368,6 +379,36 @@ SL_AVX2 Faces8 faces8_avx2(const MapLookupConsts& c, int cross_pcf, const float*
   return out;
 }
 
+SL_AVX2 inline __m256i clamp_i(__m256i v, __m256i lo, __m256i hi) {
+  return _mm256_min_epi32(_mm256_max_epi32(v, lo), hi);
+}
+
+SL_AVX2 void bilinear8_avx2(const MapLookupConsts& c, const Receivers8& r,
+                            const PlaneGather* planes, int n, float (*values)[4][8], float* fx,
+                            float* fy) {
+  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
+  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
+  const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
+  const __m256i ix = floor_i(gx), iy = floor_i(gy);
+  _mm256_storeu_ps(fx, _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix)));
+  _mm256_storeu_ps(fy, _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy)));
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
+  const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
+  const __m256i x0 = clamp_i(ix, zero, wm), x1 = clamp_i(_mm256_add_epi32(ix, one), zero, wm);
+  const __m256i r0 = _mm256_mullo_epi32(clamp_i(iy, zero, hm), w);
+  const __m256i r1 = _mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w);
+  const __m256i idx[4] = {_mm256_add_epi32(r0, x0), _mm256_add_epi32(r0, x1),
+                          _mm256_add_epi32(r1, x0), _mm256_add_epi32(r1, x1)};
+  for (int p = 0; p < n; ++p) {
+    const __m256i off = lane_i(planes[p].offset, face);
+    for (int t = 0; t < 4; ++t)
+      _mm256_storeu_ps(values[p][t], _mm256_mask_i32gather_ps(_mm256_setzero_ps(), planes[p].base,
+                                                              _mm256_add_epi32(off, idx[t]), active, 4));
+  }
+}
+
 }  // namespace
 #endif
 
@@ -388,6 +429,13 @@ Depth1Fn depth1_simd() {
 Faces8Fn faces8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return faces8_avx2;
+#endif
+  return nullptr;
+}
+
+Bilinear8Fn bilinear8_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return bilinear8_avx2;
 #endif
   return nullptr;
 }

@@ -73,10 +73,27 @@ struct Faces8 {
 using Faces8Fn = Faces8 (*)(const MapLookupConsts& c, int cross_pcf, const float* pos,
                             const float* nrm, const uint8_t* covered, Receivers8& rest);
 
+// Per-face float planes (a filter's map.a, map.b, …) seen from one base with 32-bit offsets in
+// floats, like the distances in MapLookupConsts; ok is false when they lie too far apart.
+struct PlaneGather {
+  const float* base = nullptr;
+  alignas(32) int32_t offset[8] = {};
+  bool ok = false;
+};
+PlaneGather plane_gather(const std::vector<std::vector<float>>& planes);
+
+// The bilinear footprint of 8 receivers (bilinear_taps: texels (x0, y0) … (x0 + 1, y0 + 1)
+// clamped to the face, fractions fx, fy) and, for the active lanes, the 4 tap values of each of
+// n planes: values[plane][tap][lane], taps in the order (x0,y0), (x1,y0), (x0,y1), (x1,y1).
+using Bilinear8Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
+                             const PlaneGather* planes, int n, float (*values)[4][8], float* fx,
+                             float* fy);
+
 // The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 Receivers8Fn receivers8_simd();
 Depth1Fn depth1_simd();
 PcfFn pcf_simd();
 Faces8Fn faces8_simd();
+Bilinear8Fn bilinear8_simd();
 
 }  // namespace shadowlab

@@ -2,6 +2,9 @@
 // (techniques/moment_filter.h), looked up bilinearly and bounded by Chebyshev's inequality with
 // the variance floor and the light-bleeding reduction; Krave's max-depth test and slope moment.
 #include <algorithm>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "core/error.h"
 #include "techniques/map_filter.h"
@@ -54,14 +57,143 @@ float chebyshev(double t, double mean, double var, double min_var, double bleed)
   return float(pmax);
 }
 
+// Visibility from the 4 bilinear taps' values of the planes: A (mean, or m1 in fp32 mode),
+// B (variance, or m2), M (max depth; read only with maxdepth_eps > 0), weights from fx, fy.
+struct VsmConsts {
+  double min_var, eps, bleed;
+  bool maxdepth, fp32;
+};
+inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const float* M, float fx,
+                       float fy, float depth) {
+  const double w[4] = {(1.0 - fx) * (1.0 - fy), double(fx) * (1.0 - fy), (1.0 - fx) * double(fy),
+                       double(fx) * double(fy)};
+  const double t = double(depth);
+  if (k.maxdepth) {
+    const double m = std::max(std::max(M[0], M[1]), std::max(M[2], M[3]));
+    if (t > m + k.eps) return 0.0f;
+  }
+  if (k.fp32) {
+    // The naive form in float: var = E[d²] − E[d]².
+    float m1 = 0.0f, m2 = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+      m1 += float(w[i]) * A[i];
+      m2 += float(w[i]) * B[i];
+    }
+    return chebyshev(t, m1, double(m2 - m1 * m1), k.min_var, k.bleed);
+  }
+  // Centred: the mixture of the four texels' (mean, variance) has variance
+  // Σ w·var + Σ w·(mean − mean̄)², with no cancellation.
+  double mean = 0.0;
+  for (int i = 0; i < 4; ++i) mean += w[i] * A[i];
+  double var = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double dm = A[i] - mean;
+    var += w[i] * (double(B[i]) + dm * dm);
+  }
+  return chebyshev(t, mean, var, k.min_var, k.bleed);
+}
+
+#if defined(__x86_64__)
+// vsm_value (centred moments, not fp32) for 4 lanes in double: its operations in its order
+// (std::max(a, b) is a < b ? b : a, a blend on that compare; std::clamp likewise), so the lanes
+// get vsm_value's bits.
+__attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
+                                                  const __m256d* B, const __m256* M4,
+                                                  __m256d fx, __m256d fy, __m256d t,
+                                                  int half) {
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
+  const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(fx, oy), _mm256_mul_pd(ox, fy),
+                        _mm256_mul_pd(fx, fy)};
+  __m256d mean = zero;
+  for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
+  __m256d var = zero;
+  for (int i = 0; i < 4; ++i) {
+    const __m256d dm = _mm256_sub_pd(A[i], mean);
+    var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
+  }
+  const __m256d min_var = _mm256_set1_pd(k.min_var);
+  var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));
+  const __m256d diff = _mm256_sub_pd(t, mean);
+  __m256d pmax = _mm256_div_pd(var, _mm256_add_pd(var, _mm256_mul_pd(diff, diff)));
+  if (k.bleed > 0.0) {
+    const __m256d b = _mm256_set1_pd(k.bleed);
+    __m256d q = _mm256_div_pd(_mm256_sub_pd(pmax, b), _mm256_sub_pd(one, b));
+    q = _mm256_blendv_pd(q, one, _mm256_cmp_pd(one, q, _CMP_LT_OQ));
+    pmax = _mm256_blendv_pd(q, zero, _mm256_cmp_pd(q, zero, _CMP_LT_OQ));
+  }
+  __m256d result = _mm256_blendv_pd(pmax, one, _mm256_cmp_pd(t, mean, _CMP_LE_OQ));
+  if (k.maxdepth) {
+    // m = max(max(M0, M1), max(M2, M3)) in float, then t > m + eps → 0.
+    const __m256 m01 = _mm256_blendv_ps(M4[0], M4[1], _mm256_cmp_ps(M4[0], M4[1], _CMP_LT_OQ));
+    const __m256 m23 = _mm256_blendv_ps(M4[2], M4[3], _mm256_cmp_ps(M4[2], M4[3], _CMP_LT_OQ));
+    const __m256 m8 = _mm256_blendv_ps(m01, m23, _mm256_cmp_ps(m01, m23, _CMP_LT_OQ));
+    const __m256d m = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(m8, 1) : _mm256_castps256_ps128(m8));
+    result = _mm256_blendv_pd(result, zero,
+                              _mm256_cmp_pd(t, _mm256_add_pd(m, _mm256_set1_pd(k.eps)), _CMP_GT_OQ));
+  }
+  return result;
+}
+
+// The 8 lanes of a batch: two halves of vsm_value4.
+__attribute__((target("avx2"))) void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
+                                                    const float* fx, const float* fy,
+                                                    const float* depth, float* out) {
+  __m256 M4[4];
+  for (int i = 0; i < 4; ++i) M4[i] = _mm256_load_ps(v[2][i]);
+  for (int half = 0; half < 2; ++half) {
+    __m256d A[4], B[4];
+    for (int i = 0; i < 4; ++i) {
+      A[i] = _mm256_cvtps_pd(_mm_load_ps(v[0][i] + 4 * half));
+      B[i] = _mm256_cvtps_pd(_mm_load_ps(v[1][i] + 4 * half));
+    }
+    const __m256d res =
+        vsm_value4(k, A, B, M4, _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half)),
+                   _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half)),
+                   _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half)), half);
+    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(res));
+  }
+}
+#endif
+
+// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then vsm_value's
+// arithmetic in AVX2 double (fp32 mode: vsm_value lane by lane).
+struct VsmBatch {
+  static constexpr bool kEnabled = true;
+  VsmConsts k;
+  Bilinear8Fn bilinear8;
+  PlaneGather planes[3];  // a, b, max_depth
+  int n;
+  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+    alignas(32) float v[3][4][8] = {}, fx[8], fy[8];
+    bilinear8(c, r, planes, n, v, fx, fy);
+#if defined(__x86_64__)
+    if (!k.fp32) {
+      vsm_batch_avx2(k, v, fx, fy, r.depth, out);
+      return;
+    }
+#endif
+    for (int lane = 0; lane < 8; ++lane) {
+      if (!r.active[lane]) continue;
+      float A[4], B[4], M[4];
+      for (int t = 0; t < 4; ++t) {
+        A[t] = v[0][t][lane];
+        B[t] = v[1][t][lane];
+        M[t] = v[2][t][lane];
+      }
+      out[lane] = vsm_value(k, A, B, M, fx[lane], fy[lane], r.depth[lane]);
+    }
+  }
+};
+
 void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
             ImageF& mask, ImageU32* texels) {
   const FaceLayout& L = map.layout;
   const double inv_far = 1.0 / double(scene.light.far);
   const VsmKeys& v = p.vsm;
-  const double min_var = v.min_variance * inv_far * inv_far;
-  const double eps = v.maxdepth_eps * inv_far;
-  lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {
+  const VsmConsts k{v.min_variance * inv_far * inv_far, v.maxdepth_eps * inv_far, v.bleed,
+                    v.maxdepth_eps > 0.0, v.fp32};
+  auto visibility = [&](const Receiver& r) {
     const size_t fi = size_t(r.face);
     const LightFace& f = L.faces[fi];
     const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
@@ -69,36 +201,22 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
                            size_t(bl.y0) * size_t(f.width) + size_t(bl.x1),
                            size_t(bl.y1) * size_t(f.width) + size_t(bl.x0),
                            size_t(bl.y1) * size_t(f.width) + size_t(bl.x1)};
-    const double w[4] = {(1.0 - bl.fx) * (1.0 - bl.fy), double(bl.fx) * (1.0 - bl.fy),
-                         (1.0 - bl.fx) * double(bl.fy), double(bl.fx) * double(bl.fy)};
-    const double t = double(r.depth);
-    if (v.maxdepth_eps > 0.0) {
-      const std::vector<float>& mx = map.max_depth[fi];
-      const double m = std::max(std::max(mx[idx[0]], mx[idx[1]]), std::max(mx[idx[2]], mx[idx[3]]));
-      if (t > m + eps) return 0.0f;
+    float A[4], B[4], M[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < 4; ++i) {
+      A[i] = map.a[fi][idx[i]];
+      B[i] = map.b[fi][idx[i]];
+      if (k.maxdepth) M[i] = map.max_depth[fi][idx[i]];
     }
-    const std::vector<float>& A = map.a[fi];
-    const std::vector<float>& B = map.b[fi];
-    if (v.fp32) {
-      // The naive form in float: var = E[d²] − E[d]².
-      float m1 = 0.0f, m2 = 0.0f;
-      for (int k = 0; k < 4; ++k) {
-        m1 += float(w[k]) * A[idx[k]];
-        m2 += float(w[k]) * B[idx[k]];
-      }
-      return chebyshev(t, m1, double(m2 - m1 * m1), min_var, v.bleed);
-    }
-    // Centred: the mixture of the four texels' (mean, variance) has variance
-    // Σ w·var + Σ w·(mean − mean̄)², with no cancellation.
-    double mean = 0.0;
-    for (int k = 0; k < 4; ++k) mean += w[k] * A[idx[k]];
-    double var = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const double dm = A[idx[k]] - mean;
-      var += w[k] * (double(B[idx[k]]) + dm * dm);
-    }
-    return chebyshev(t, mean, var, min_var, v.bleed);
-  });
+    return vsm_value(k, A, B, M, bl.fx, bl.fy, r.depth);
+  };
+  VsmBatch batch{k, bilinear8_simd(), {plane_gather(map.a), plane_gather(map.b), plane_gather(map.max_depth)},
+                 k.maxdepth ? 3 : 2};
+  const bool gathers = batch.bilinear8 && batch.planes[0].ok && batch.planes[1].ok &&
+                       (!k.maxdepth || batch.planes[2].ok);
+  if (gathers)
+    lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
+  else
+    lookup_pixels(scene, g, p, map, mask, texels, visibility);
 }
 
 uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear
