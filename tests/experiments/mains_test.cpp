@@ -139,7 +139,8 @@ TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   for (const std::string spec : {"csm:res=512,pcf=3", "csm:res=256", "tsm:res=256",
                                  "tsm:res=256,slope=3,bias=0.002", "tsm:res=256,pcf=5",
                                  "psm:res=256 --slide spot", "psm:res=256,pcf=3 --slide spot",
-                                 "cvsm:res=256", "tvsm:res=256,fp32=1", "tesm:res=256"}) {
+                                 "cvsm:res=256", "tvsm:res=256,fp32=1", "tesm:res=256",
+                                 "cvsm:res=256,maxdepth_eps=0.05,bleed=0.2", "cesm:res=256,c=80"}) {
     std::vector<std::string> masks, texels;
     for (const char* env : {"SHADOWLAB_SCALAR=1 ", "SHADOWLAB_SCALAR=0 "}) {
       const std::string out = test::binary_path(std::string("render_path_") + env[17]);
