@@ -18,7 +18,8 @@ TEST(FaceMaps, NoSeamsAcrossFaceBoundariesAndCorners) {
   const BoxRoom room = make_box_room();
   for (const char* spec : {"tsm:res=256", "tsm:res=256,pcf=5", "cvsm:res=256,blur=7",
                            "tvsm:res=256,blur=7", "cesm:res=256,blur=7", "tesm:res=256,blur=7",
-                           "csm:res=256,pcf=5"}) {
+                           "csm:res=256,pcf=5", "csm:res=256,pcf=5,seams=guard",
+                           "tsm:res=256,pcf=5,seams=cross"}) {
     const ShadowResult r = run(spec, room.scene, room.g);
     float worst = 1.0f;
     for (size_t i = 0; i < room.g.pixel_count(); ++i)

@@ -30,8 +30,11 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
     o.g = render_gbuffer(scene);
     o.csm = test::run("csm:res=256,pcf=3", scene, o.g);
     o.soft = test::run("rt:spp=16", scene, o.g);
+    // Every filter on every layout (the projector's below), the SIMD paths included.
     for (const char* spec : {"tsm:res=128,pcf=3", "cvsm:res=128,slope_moment=1,maxdepth_eps=0.02",
-                             "tvsm:res=128,fp32=1", "cesm:res=128,c=300", "tesm:res=64,normal=1"})
+                             "tvsm:res=128,fp32=1", "cesm:res=128,c=300", "tesm:res=64,normal=1",
+                             "csm:res=256", "tsm:res=128", "csm:res=128,pcf=5,seams=guard",
+                             "tsm:res=128,pcf=3,seams=cross", "cvsm:res=128,bleed=0.2", "tesm:res=128"})
       o.family.push_back(test::run(spec, scene, o.g));
     outs.push_back(std::move(o));
   }
@@ -67,7 +70,8 @@ TEST(Determinism, FoliageAndProjectorAreThreadCountIndependent) {
     for (const char* spec : {"csm:res=256,pcf=3", "tsm:res=128", "cvsm:res=128"})
       o.push_back(test::run(spec, foliage, g).mask.data);
     const GBuffer gb = render_gbuffer(bunny);
-    o.push_back(test::run("psm:res=256,pcf=3,depth=8cubic", bunny, gb).mask.data);
+    for (const char* spec : {"psm:res=256,pcf=3,depth=8cubic", "psm:res=256", "pvsm:res=128", "pesm:res=128"})
+      o.push_back(test::run(spec, bunny, gb).mask.data);
     outs.push_back(std::move(o));
   }
   set_thread_count(2);
