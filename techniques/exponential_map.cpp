@@ -17,9 +17,7 @@ namespace shadowlab {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  p.blur = r.get_int("blur", p.blur, 1, 63);
-  if (p.blur % 2 == 0)
-    throw InputError(flag, name + ": 'blur' must be odd, got " + std::to_string(p.blur));
+  read_blur(r, name, flag, p);
   // exp(c·Δ) with Δ <= 1 must stay below DBL_MAX (ln ≈ 709.8) in the filter; see moment_filter.h.
   p.esm.c = r.get_double("c", p.esm.c, 0.01, 700.0);
 }

@@ -46,6 +46,12 @@ std::string map_keys_text(FaceLayoutKind layout, MapFilter filter) {
   return b + map_filter_ops(filter).keys_text(p);
 }
 
+void read_blur(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
+  p.blur = r.get_int("blur", p.blur, 1, 63);
+  if (p.blur % 2 == 0)
+    throw InputError(flag, name + ": 'blur' must be odd, got " + std::to_string(p.blur));
+}
+
 int map_guard(const MapParams& p) {
   // PCF reaches (pcf + 1)/2 texels from the lookup centre; a moment map's bilinear lookup
   // reaches 1 texel, whose filtered value reads blur/2 texels further. One more texel covers

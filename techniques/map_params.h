@@ -70,6 +70,8 @@ MapParams default_map_params(FaceLayoutKind layout, MapFilter filter);
 // the key; unknown keys are errors).
 MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, MapFilter filter,
                            const char* flag);
+// Reads `blur` (odd, 1..63), the box width every filtering technique takes.
+void read_blur(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
 // "key=default,…" of a layout × filter, for --list-techniques and --help.
 std::string map_keys_text(FaceLayoutKind layout, MapFilter filter);
 // Guard texels each face needs so that every tap and filter stays inside the face's image

@@ -14,9 +14,7 @@ namespace shadowlab {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  p.blur = r.get_int("blur", p.blur, 1, 63);
-  if (p.blur % 2 == 0)
-    throw InputError(flag, name + ": 'blur' must be odd, got " + std::to_string(p.blur));
+  read_blur(r, name, flag, p);
   VsmKeys& v = p.vsm;
   v.min_variance = r.get_double("min_variance", v.min_variance, 0.0, 1e6);
   v.bleed = r.get_double("bleed", v.bleed, 0.0, 0.99);
