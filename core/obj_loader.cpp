@@ -207,6 +207,13 @@ Mesh make_mesh(const std::string& path, const tinyobj::attrib_t& a, const MeshBu
   if (all_vn) mesh.normals.resize(nv);
   if (with_vt > 0) mesh.uvs.assign(nv, vec2(0.0f));
   bool bad_normal = false;
+  // Every index is range-checked here too (the text check should have caught any bad one; a
+  // disagreement between it and tinyobjloader must not read outside the arrays).
+  const size_t n_pos = a.vertices.size() / 3, n_nrm = a.normals.size() / 3, n_uv = a.texcoords.size() / 2;
+  for (const CornerKey& k : b.keys)
+    if (k.v < 0 || size_t(k.v) >= n_pos || (all_vn && size_t(k.vn) >= n_nrm) ||
+        (k.vt >= 0 && size_t(k.vt) >= n_uv))
+      throw InputError(path, "a face refers to a vertex, normal or texcoord the file does not have");
   for (size_t i = 0; i < nv; ++i) {
     const CornerKey& key = b.keys[i];
     const float* p = &a.vertices[3 * size_t(key.v)];

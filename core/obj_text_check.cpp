@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cfloat>
+#include <climits>
+#include <cstdint>
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -11,7 +13,44 @@
 namespace shadowlab {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+[[noreturn]] void fail(const std::string& path, size_t line, const std::string& what);
+
+// tinyobjloader's rules, which the check must share or the two read different geometry from the
+// same bytes: a token ends at a space or a tab only (IS_SPACE), and a line at "\n", "\r\n" or a
+// lone "\r" (safeGetline). Other control bytes (\v, \f, NUL, …) are rejected before parsing.
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// The line starting at `pos`: [pos, end) without its terminator; `next` is where the following
+// line starts.
+std::string_view next_line(std::string_view text, size_t pos, size_t& next) {
+  size_t eol = text.find_first_of("\r\n", pos);
+  if (eol == std::string_view::npos) eol = text.size();
+  next = eol + 1;
+  if (eol < text.size() && text[eol] == '\r' && eol + 1 < text.size() && text[eol + 1] == '\n')
+    next = eol + 2;
+  return text.substr(pos, eol - pos);
+}
+
+// Rejects bytes that tinyobjloader and this check would not read alike, and UTF-16 text.
+void check_bytes(const std::string& path, std::string_view text) {
+  const bool bom16 = text.size() >= 2 && ((uint8_t(text[0]) == 0xFF && uint8_t(text[1]) == 0xFE) ||
+                                          (uint8_t(text[0]) == 0xFE && uint8_t(text[1]) == 0xFF));
+  const bool zero_high = text.size() >= 4 && text[1] == '\0' && text[3] == '\0' && text[0] != '\0';
+  if (bom16 || zero_high)
+    throw InputError(path, "is UTF-16 text; save it as UTF-8 (or ASCII)");
+  size_t line = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c == '\n' || (c == '\r' && (i + 1 >= text.size() || text[i + 1] != '\n'))) {
+      ++line;
+      continue;
+    }
+    if (c < 0x20 && c != '\t' && c != '\r')
+      fail(path, line, "control byte 0x" + std::string(1, "0123456789ABCDEF"[c >> 4]) +
+                           std::string(1, "0123456789ABCDEF"[c & 15]) +
+                           " (only tabs and line ends are allowed)");
+  }
+}
 
 // Splits a line into at most kMax whitespace-separated tokens; `count` may exceed kMax.
 struct Tokens {
@@ -118,6 +157,10 @@ void check_corner(const std::string& path, size_t line, std::string_view c, cons
     long long idx = 0;
     if (!parse_int(part[k], idx))
       fail(path, line, "face corner '" + printable(c) + "' is not an index");
+    // tinyobjloader keeps indices in an int: beyond its range no file can be right (and
+    // negating the most negative long long below would overflow).
+    if (idx > INT_MAX || idx < -INT_MAX)
+      fail(path, line, "face corner '" + printable(c) + "' has an index out of range");
     if (idx == 0) fail(path, line, "face corner '" + printable(c) + "' uses index 0");
     if (idx < 0 && size_t(-idx) > counts[k])
       fail(path, line,
@@ -136,11 +179,11 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
   size_t ignored = 0, line_no = 0;
   std::string first_ignored;
   size_t pos = 0;
+  check_bytes(path, text);
   while (pos < text.size()) {
-    size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    const std::string_view line = text.substr(pos, eol - pos);
-    pos = eol + 1;
+    size_t next = 0;
+    const std::string_view line = next_line(text, pos, next);
+    pos = next;
     ++line_no;
     tokenize(line, t);
     if (t.count == 0 || t.tok[0][0] == '#') continue;
@@ -206,11 +249,11 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
 void check_mtl_text(const std::string& path, std::string_view text) {
   Tokens t;
   size_t line_no = 0, pos = 0;
+  check_bytes(path, text);
   while (pos < text.size()) {
-    size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    const std::string_view line = text.substr(pos, eol - pos);
-    pos = eol + 1;
+    size_t next = 0;
+    const std::string_view line = next_line(text, pos, next);
+    pos = next;
     ++line_no;
     tokenize(line, t);
     if (t.count == 0 || t.tok[0][0] == '#') continue;

@@ -113,6 +113,45 @@ TEST(ObjLoader, MissingTextureNamesTheTexture) {
   expect_load_error(obj, {"missing_alpha.png", "cannot open", "map_d of material 'leaves'"});
 }
 
+// The text check and tinyobjloader must read the same bytes the same way. Cases from a fuzz and
+// a user's session: a vertical tab before "v" (tinyobjloader: not a space, so no vertex; the
+// check took it for one and a relative index then resolved to -1: a heap overflow), a form
+// feed, a NUL, and a lone carriage return, which ends a line for both.
+TEST(ObjLoader, CheckAndParserAgreeOnWhitespaceAndLineEnds) {
+  expect_load_error(write_file("vtab.obj", "\vv 0 0 0\nf -1 -1 -1\n"),
+                    {"vtab.obj", "line 1", "control byte 0x0B"});
+  expect_load_error(write_file("vtab2.obj", std::string(kTriangle) + "\vv 5 5 5\nf -1 -2 -3\n"),
+                    {"vtab2.obj", "line 4", "0x0B"});
+  expect_load_error(write_file("ff.obj", std::string(kTriangle) + "f 1 2\f3\n"), {"ff.obj", "0x0C"});
+  expect_load_error(write_file("nul.obj", std::string(kTriangle) + std::string("f 1 2 3\0 9\n", 12)),
+                    {"nul.obj", "line 4", "0x00"});
+  // "# note\rv 9 9 9": the comment ends at the \r, so (9, 9, 9) is vertex 1 for both readers.
+  const Scene s = load_obj_scene(
+      write_file("cr.obj", "# note\rv 9 9 9\nv 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 3\nf 2 3 4\n"));
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.triangle_count(), 2u);
+  EXPECT_EQ(s.meshes[0].positions[0], vec3(9, 9, 9));
+}
+
+// An index beyond tinyobjloader's int (the most negative 64-bit value made the check negate it,
+// which is undefined behaviour) is a clear error.
+TEST(ObjLoader, HugeFaceIndicesAreOutOfRange) {
+  expect_load_error(write_file("min64.obj", std::string(kTriangle) + "f -9223372036854775808 1 2\n"),
+                    {"min64.obj", "line 4", "out of range"});
+  expect_load_error(write_file("big.obj", std::string(kTriangle) + "f 1 2 4294967299\n"),
+                    {"big.obj", "line 4", "out of range"});
+}
+
+// UTF-16 text is named as such (it used to fail with "unknown statement '???#?'").
+TEST(ObjLoader, Utf16IsNamed) {
+  std::string u16 = "\xFF\xFE";
+  for (char c : std::string("# x\nv 0 0 0\n")) u16 += std::string(1, c) + '\0';
+  expect_load_error(write_file("u16.obj", u16), {"u16.obj", "UTF-16"});
+  std::string u16_no_bom;
+  for (char c : std::string(kTriangle)) u16_no_bom += std::string(1, c) + '\0';
+  expect_load_error(write_file("u16b.obj", u16_no_bom), {"u16b.obj", "UTF-16"});
+}
+
 TEST(ObjLoader, ByteOrderMarkIsSkipped) {
   // tinyobjloader alone would drop the first vertex and fail on "f 1 2 3".
   const Scene s =
