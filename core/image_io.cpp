@@ -66,6 +66,19 @@ void write_exr_channel(const std::string& path, const Image<T>& img, const char*
   }
 }
 
+// shadowlab's images start at pixel (0, 0) and cover the whole display window. An EXR whose
+// data window starts elsewhere (a crop, an overscan) would be compared as if it did not.
+void require_whole_window(const std::string& path, const Imf::Header& header) {
+  const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
+  if (dw.min.x != 0 || dw.min.y != 0 || dw != disp)
+    throw InputError(path, "data window (" + std::to_string(dw.min.x) + "," + std::to_string(dw.min.y) +
+                               ")-(" + std::to_string(dw.max.x) + "," + std::to_string(dw.max.y) +
+                               ") is not the whole image from (0,0) (display window (" +
+                               std::to_string(disp.min.x) + "," + std::to_string(disp.min.y) + ")-(" +
+                               std::to_string(disp.max.x) + "," + std::to_string(disp.max.y) +
+                               ")): crop or re-save it");
+}
+
 // Reads channel `name`, which must exist and have exactly type `type`.
 template <class T>
 Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelType type) {
@@ -86,6 +99,7 @@ Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelT
                                  pixel_type_name(ch->type) + ", expected " + pixel_type_name(type));
     if (ch->xSampling != 1 || ch->ySampling != 1)
       throw InputError(path, std::string("channel '") + name + "' is subsampled");
+    require_whole_window(path, header);
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;
@@ -180,6 +194,7 @@ ImageF read_exr_rgb(const std::string& path) {
     const bool rgb = chans.findChannel("R") && chans.findChannel("G") && chans.findChannel("B");
     if (!rgb && !chans.findChannel("Y"))
       throw InputError(path, "has neither R, G, B nor Y channels");
+    require_whole_window(path, header);
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;

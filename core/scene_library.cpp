@@ -1,5 +1,7 @@
 #include "core/scene_library.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <string>
 
@@ -8,6 +10,7 @@
 #include "core/foliage_scene.h"
 #include "core/mesh_builders.h"
 #include "core/obj_loader.h"
+#include "core/parse_number.h"
 
 namespace shadowlab {
 namespace {
@@ -296,6 +299,27 @@ Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* note
   const vec3 c = b.centre();
   float r = 0.5f * glm::length(b.extent());
   if (!(r > 0.0f)) r = 1.0f;  // a single point: any scale will do
+  // The automatic framing puts the camera and light a few radii away: with coordinates near
+  // float's limit that overflows (then the light, which the user never set, would be named).
+  const bool frames = header.camera.has_value() && header.light.has_value();
+  if (!frames && !(std::isfinite(r) && is_finite(c) && r < 1e30f && glm::length(c) < 1e30f)) {
+    double largest = 0.0;
+    for (int k = 0; k < 3; ++k)
+      largest = std::max({largest, std::fabs(double(b.lo[k])), std::fabs(double(b.hi[k]))});
+    throw InputError(obj_path, "the model's bounds are too large to frame a camera and a light "
+                               "automatically (coordinates up to " + number_text(largest) +
+                                   " m); scale the model or give them in the file's header");
+  }
+  // Every triangle of zero area: nothing casts or receives a shadow.
+  bool any_area = false;
+  for (const Mesh& m : s.meshes)
+    for (size_t t = 0; t < m.triangle_count() && !any_area; ++t) {
+      const vec3 a = m.positions[m.indices[3 * t]], b2 = m.positions[m.indices[3 * t + 1]],
+                 c2 = m.positions[m.indices[3 * t + 2]];
+      any_area = glm::length(glm::cross(b2 - a, c2 - a)) > 0.0f;
+    }
+  if (!any_area)
+    throw InputError(obj_path, "every triangle has zero area: nothing to render or shadow");
 
   if (header.camera) {
     s.camera = *header.camera;

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/parse_number.h"
+#include "core/spec.h"
 
 namespace shadowlab {
 namespace {
@@ -81,41 +82,23 @@ Slide make_slide(const std::string& spec, const std::string& flag) {
         throw InputError(spec, "slide has a negative or non-finite value");
     return slide;
   }
-  const size_t colon = spec.find(':');
-  const std::string name = spec.substr(0, colon);
+  // The generic strict "name:key=value,…" parser (core/spec.h): no repeated keys, no
+  // trailing comma, no spaces in numbers.
+  const Spec parsed = parse_spec(spec, flag);
+  const std::string& name = parsed.name;
   if (name != "spot" && name != "grid")
     throw InputError(flag, "unknown slide '" + spec +
                                "' (known: spot, grid:amp=A,freq=F, or a .png/.jpg/.exr file)");
+  SpecReader r(parsed, flag);
+  const long res = r.get_int("res", 512, 8, 4096);
   double amp = 0.0, freq = 0.0;
-  long res = 512;
-  bool have_amp = false, have_freq = false;
-  std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  if (colon != std::string::npos && rest.empty())
-    throw InputError(flag, "slide '" + spec + "' has an empty parameter list");
-  while (!rest.empty()) {
-    const size_t comma = rest.find(',');
-    const std::string kv = rest.substr(0, comma);
-    rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
-    const size_t eq = kv.find('=');
-    if (eq == std::string::npos) throw InputError(flag, "slide parameter '" + kv + "' has no '='");
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    if (key == "res") {
-      if (!parse_long(value, res) || res < 8 || res > 4096)
-        throw InputError(flag, "slide 'res' must be an integer in [8, 4096], got '" + value + "'");
-    } else if (name == "grid" && key == "amp") {
-      if (!parse_double(value, amp) || amp < 0.0 || amp > 1.0)
-        throw InputError(flag, "slide 'amp' must be a number in [0, 1], got '" + value + "'");
-      have_amp = true;
-    } else if (name == "grid" && key == "freq") {
-      if (!parse_double(value, freq) || freq < 0.0 || freq > 1000.0)
-        throw InputError(flag, "slide 'freq' must be a number in [0, 1000], got '" + value + "'");
-      have_freq = true;
-    } else {
-      throw InputError(flag, "slide '" + name + "' has no parameter '" + key + "'");
-    }
+  if (name == "grid") {
+    if (!parsed.params.count("amp") || !parsed.params.count("freq"))
+      throw InputError(flag, "slide 'grid' needs both amp and freq (grid:amp=A,freq=F)");
+    amp = r.get_double("amp", 0.0, 0.0, 1.0);
+    freq = r.get_double("freq", 0.0, 0.0, 1000.0);
   }
-  if (name == "grid" && (!have_amp || !have_freq))
-    throw InputError(flag, "slide 'grid' needs both amp and freq (grid:amp=A,freq=F)");
+  r.reject_unknown();
   slide.rgb = bake(int(res), float(amp), float(freq));
   return slide;
 }

@@ -35,10 +35,15 @@ long parse_long(const std::string& flag, const std::string& s) {
 }  // namespace
 
 std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, sep)) out.push_back(item);
+  // Every item, empty ones included ("1,,2" and "1,2," have an empty item), so that callers
+  // reject them instead of silently dropping them.
+  std::vector<std::string> out(1);
+  for (char c : s) {
+    if (c == sep)
+      out.emplace_back();
+    else
+      out.back() += c;
+  }
   return out;
 }
 
@@ -51,8 +56,8 @@ int ParsedArgs::get_int(const std::string& flag, int fallback, int lo, int hi) c
   if (!has(flag)) return fallback;
   const long v = parse_long(flag, get(flag, ""));
   if (v < lo || v > hi)
-    throw InputError(flag, get(flag, "") + " is outside [" + std::to_string(lo) + ", " +
-                               std::to_string(hi) + "]");
+    throw InputError(flag, get(flag, "") + " is outside [" + number_text(lo) + ", " +
+                               number_text(hi) + "]");
   return int(v);
 }
 
@@ -61,8 +66,8 @@ double ParsedArgs::get_double(const std::string& flag, double fallback, double l
   if (!has(flag)) return fallback;
   const double v = parse_double(flag, get(flag, ""));
   if (v < lo || v > hi)
-    throw InputError(flag, get(flag, "") + " is outside [" + std::to_string(lo) + ", " +
-                               std::to_string(hi) + "]");
+    throw InputError(flag, get(flag, "") + " is outside [" + number_text(lo) + ", " +
+                               number_text(hi) + "]");
   return v;
 }
 
@@ -73,8 +78,8 @@ std::vector<int> ParsedArgs::get_int_list(const std::string& flag, const std::ve
   for (const std::string& item : split(get(flag, ""), ',')) {
     const long v = parse_long(flag, item);
     if (v < lo || v > hi)
-      throw InputError(flag, item + " is outside [" + std::to_string(lo) + ", " +
-                                 std::to_string(hi) + "]");
+      throw InputError(flag, item + " is outside [" + number_text(lo) + ", " +
+                                 number_text(hi) + "]");
     out.push_back(int(v));
   }
   if (out.empty()) throw InputError(flag, "expected a comma-separated list of integers");
@@ -235,7 +240,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
       }
     return body(argc, argv);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
+    // One prefix: an error whose source is the program itself ("metric") is not named twice.
+    if (e.where == prog)
+      std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.reason.c_str());
+    else
+      std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());

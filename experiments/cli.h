@@ -29,7 +29,7 @@ struct ParsedArgs {
   vec3 get_vec3(const std::string& flag, const vec3& fallback) const;
 };
 
-// Splits s at every `sep` (a trailing separator adds no empty item).
+// Splits s at every `sep`, keeping empty items ("a,,b" and "a,b," hold an empty one).
 std::vector<std::string> split(const std::string& s, char sep);
 
 // The flags every experiment takes: --scene --width --height --threads --light-radius --out,

@@ -30,12 +30,14 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
 
 nlohmann::json timing_json(const ShadowResult& r) {
   nlohmann::json j;
-  j["faces_ms"] = r.faces_ms;
-  j["render_ms"] = r.render_ms;
-  j["filter_ms"] = r.filter_ms;
-  j["map_ms"] = r.map_ms;
-  j["lookup_ms"] = r.lookup_ms;
-  j["shadow_ms"] = r.shadow_ms();
+  // A reference read from the cache was not timed: its times are null, not 0.
+  auto ms = [&](double v) { return r.from_cache ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  j["faces_ms"] = ms(r.faces_ms);
+  j["render_ms"] = ms(r.render_ms);
+  j["filter_ms"] = ms(r.filter_ms);
+  j["map_ms"] = ms(r.map_ms);
+  j["lookup_ms"] = ms(r.lookup_ms);
+  j["shadow_ms"] = ms(r.shadow_ms());
   const WorkCounts& w = r.work;
   j["work"] = {{"triangles_submitted", w.triangles_submitted},
                {"triangles_binned", w.triangles_binned},
@@ -58,6 +60,7 @@ const char* work_csv_header() {
 std::string work_csv_values(const ShadowResult& r) {
   const WorkCounts& w = r.work;
   char b[512];
+  if (r.from_cache) return ",,,0,0,0,0,0,0,0,0";  // not timed, no map
   std::snprintf(b, sizeof b, "%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%.4f,%llu,%llu", r.faces_ms,
                 r.render_ms, r.filter_ms, (unsigned long long)w.triangles_submitted,
                 (unsigned long long)w.triangles_binned, (unsigned long long)w.texels_rendered,

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     const Scene scene = scene_from_args(args);
     if (args.has("--ambient") && !scene.projector.enabled)
       throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
+    validate_technique_for_scene(spec, scene, "--technique");
     const std::string out = args.get("--out", "");
     make_output_dir(out, "--out");
 

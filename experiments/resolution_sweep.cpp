@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
     if (a.has("--plot") && plot.empty()) throw InputError("--plot", "needs a file name");
     if (!plot.empty() && !std::filesystem::is_directory(std::filesystem::absolute(plot).parent_path()))
       throw InputError("--plot", "'" + plot + "': folder does not exist");
+    if (!plot.empty() && std::filesystem::is_directory(plot))
+      throw InputError("--plot", "'" + plot + "' is a folder; give a file name such as plot.svg");
     const SweepResult r = run_resolution_sweep(scene, c);
     std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
                 r.scene.c_str(), r.width, r.height, scene.light.radius, c.spp, thread_count(),

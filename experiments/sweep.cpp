@@ -40,15 +40,26 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.scene = scene.name;
   out.width = scene.camera.width;
   out.height = scene.camera.height;
+  // Every input is checked before the first expensive step (the camera pass and reference).
+  if (config.techniques.empty()) throw InputError("--techniques", "is empty");
+  if (config.resolutions.empty()) throw InputError("--resolutions", "is empty");
+  for (size_t i = 0; i < config.resolutions.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (config.resolutions[i] == config.resolutions[j])
+        throw InputError("--resolutions", std::to_string(config.resolutions[i]) +
+                                              " given twice (their files would overwrite each other)");
   std::vector<TechniqueSpec> specs;
   for (const std::string& t : config.techniques) {
     TechniqueSpec s = parse_technique_spec(t, "--techniques");
     if (s.params.count("res")) throw InputError("--techniques", "'" + t + "': res is swept by --resolutions");
+    for (const TechniqueSpec& other : specs)
+      if (other.text == s.text)
+        throw InputError("--techniques", "'" + s.text + "' given twice (its files would overwrite each other)");
     specs.push_back(s);
     for (int r : config.resolutions) {
       TechniqueSpec probe = s;
       probe.params["res"] = std::to_string(r);
-      validate_technique(probe, "--techniques");
+      validate_technique_for_scene(probe, scene, "--techniques");
     }
   }
   const auto start = std::chrono::steady_clock::now();
@@ -189,13 +200,21 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
     char buf[1024];
+    // Empty fields where there is no value: the times of a cached reference, the performance
+    // score of a row without timings (the reference).
+    char shadow[32] = "", map[32] = "", lookup[32] = "", perf[32] = "";
+    if (!row.result.from_cache) {
+      std::snprintf(shadow, sizeof shadow, "%.4f", row.result.shadow_ms());
+      std::snprintf(map, sizeof map, "%.4f", row.result.map_ms);
+      std::snprintf(lookup, sizeof lookup, "%.4f", row.result.lookup_ms);
+    }
+    if (m.has_performance) std::snprintf(perf, sizeof perf, "%.6f", m.performance);
     std::snprintf(buf, sizeof buf,
-                  "%s,\"%s\",%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,%.4f,"
-                  "%.4f,%.6f,%.6f,%d,",
+                  "%s,\"%s\",%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%s,%s,"
+                  "%s,%s,%.6f,%d,",
                   row.label.c_str(), row.spec.c_str(), row.res, m.c10, m.c50, m.c90, m.dark,
-                  m.lit, m.acne, m.noise, m.detail, m.ssim, m.rmse, m.psnr, row.result.shadow_ms(),
-                  row.result.map_ms, row.result.lookup_ms, m.performance, m.total,
-                  row.result.faces_rendered);
+                  m.lit, m.acne, m.noise, m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup,
+                  perf, m.total, row.result.faces_rendered);
     f << buf << work_csv_values(row.result) << "\n";
   };
   add(r.reference);

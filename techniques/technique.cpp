@@ -18,6 +18,7 @@ struct Entry {
   std::string description;  // what it is, then "keys: k=default,…"
   std::function<void(const TechniqueSpec&, const char* flag)> parse;
   std::function<ShadowResult(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&)> run;
+  bool needs_projector = false;  // the projector layout: the scene needs --slide
 };
 
 struct LayoutName {
@@ -51,7 +52,8 @@ std::vector<Entry> make_registry() {
            [layout, filter](const TechniqueSpec& s, const Scene& scene, const GBuffer& g,
                             const RunOptions& o) {
              return run_light_map(parse_map_params(s, layout, filter, o.flag), scene, g, o);
-           }});
+           },
+           layout == FaceLayoutKind::Projector});
     }
   return rows;
 }
@@ -93,6 +95,13 @@ void gate_by_projector(const Scene& scene, const GBuffer& g, ShadowResult& r) {
 
 void validate_technique(const TechniqueSpec& spec, const char* flag) {
   find(spec, flag).parse(spec, flag);
+}
+
+void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene, const char* flag) {
+  const Entry& e = find(spec, flag);
+  e.parse(spec, flag);
+  if (e.needs_projector && !scene.projector.enabled)
+    throw InputError(flag, spec.name + " needs a slide projector light (--slide)");
 }
 
 std::vector<std::pair<std::string, std::string>> technique_list() {

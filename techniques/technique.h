@@ -71,6 +71,9 @@ ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const 
 void gate_by_projector(const Scene& scene, const GBuffer& gbuffer, ShadowResult& result);
 // Checks a spec without running it (name and every parameter), throwing like run_technique.
 void validate_technique(const TechniqueSpec& spec, const char* flag);
+// Checks what a technique needs of the scene (the projector layout needs a slide projector), so
+// that runs fail before any expensive step rather than after a reference.
+void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene, const char* flag);
 // Registered technique names with one-line descriptions (keys and defaults), for --help and
 // --list-techniques.
 std::vector<std::pair<std::string, std::string>> technique_list();

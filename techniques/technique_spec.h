@@ -1,45 +1,14 @@
 #pragma once
-// Technique specifications: "name:key=value,key=value" (e.g. "csm:res=1024,pcf=3").
-// Parsing is strict: unknown keys, repeated keys and malformed values are InputErrors naming
-// the flag, so a typo never silently runs a default.
-#include <map>
-#include <string>
-#include <vector>
+// Technique specifications: core/spec.h's generic "name:key=value,…" with the technique
+// registry's name (techniques/technique.h).
+#include "core/spec.h"
 
 namespace shadowlab {
 
-struct TechniqueSpec {
-  std::string name;                           // registry name, e.g. "csm"
-  std::map<std::string, std::string> params;  // key → raw value
-  std::string text;                           // canonical text "name:k=v,..." (keys sorted)
-};
+using TechniqueSpec = Spec;
 
-// Parses one spec. `flag` names where it came from (for error messages, e.g. "--technique").
-TechniqueSpec parse_technique_spec(const std::string& text, const std::string& flag);
-// Canonical text of a spec: "name:k=v,..." with keys in sorted order ("name" alone without params).
-std::string spec_text(const TechniqueSpec& spec);
-// Splits a comma-separated list of specs, where a spec's own parameters also use commas:
-// a token with '=' but no ':' continues the previous spec. "csm:res=64,pcf=3,rt" →
-// {"csm:res=64,pcf=3", "rt"}.
-std::vector<std::string> split_spec_list(const std::string& text);
-
-// Typed accessors over a spec's params, each checking the range and naming the spec in errors.
-// The key is marked as used; reject_unknown() throws for any param no accessor asked for.
-class SpecReader {
- public:
-  SpecReader(const TechniqueSpec& spec, std::string flag);
-  int get_int(const std::string& key, int fallback, int lo, int hi);
-  double get_double(const std::string& key, double fallback, double lo, double hi);
-  bool get_bool(const std::string& key, bool fallback);
-  // One of `choices` (exact text), else InputError listing them.
-  std::string get_choice(const std::string& key, const std::string& fallback,
-                         const std::vector<std::string>& choices);
-  void reject_unknown() const;
-
- private:
-  const TechniqueSpec& spec_;
-  std::string flag_;
-  std::vector<std::string> used_;
-};
+inline TechniqueSpec parse_technique_spec(const std::string& text, const std::string& flag) {
+  return parse_spec(text, flag);
+}
 
 }  // namespace shadowlab

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>  // stb is a private dependency of core: full path
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 
 #include <cstdio>
 #include <cstring>
@@ -9,6 +13,7 @@
 #include <limits>
 #include <string>
 
+#include "core/error.h"
 #include "core/texture.h"
 #include "test_paths.h"
 
@@ -74,6 +79,36 @@ TEST(ImageIo, ReadingTexelsAsAMaskIsAnInputError) {
   const std::string path = test::binary_path("core/texels_for_mask.exr");
   write_exr_texels(path, ImageU32(4, 3, 1, 5u));
   expect_input_error([&] { read_exr_mask(path); }, "'Y'");
+}
+
+// An EXR whose data window does not start at (0, 0) (a crop or an overscan) is refused instead
+// of being compared as if it did (metric used to read a window (5,7)-(12,10) as pixels (0,0)-).
+TEST(ImageIo, ExrDataWindowMustBeTheWholeImageFromTheOrigin) {
+  auto write_window = [](const std::string& name, Imath::Box2i disp, Imath::Box2i data) {
+    const std::string path = test::binary_path(name);
+    Imf::Header header(disp, data);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    const int w = data.max.x - data.min.x + 1, h = data.max.y - data.min.y + 1;
+    std::vector<float> px(size_t(w * h), 0.5f);
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer fb;
+    fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, px.data(), data, sizeof(float), sizeof(float) * size_t(w)));
+    file.setFrameBuffer(fb);
+    file.writePixels(h);
+    return path;
+  };
+  const Imath::Box2i whole(Imath::V2i(0, 0), Imath::V2i(15, 11));
+  EXPECT_EQ(read_exr_mask(write_window("window_whole.exr", whole, whole)).width, 16);
+  for (const auto& [name, data] : {std::pair<const char*, Imath::Box2i>{"window_offset.exr", Imath::Box2i(Imath::V2i(5, 7), Imath::V2i(12, 10))},
+                                   {"window_crop.exr", Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(7, 5))}}) {
+    try {
+      read_exr_mask(write_window(name, whole, data));
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(ImageIo, MissingExrNamesTheFile) {

@@ -248,6 +248,29 @@ TEST(SceneLibrary, ObjSceneIsFramedFromItsBounds) {
   EXPECT_EQ(s.meshes.back().name, "ground");
 }
 
+// A model too large to frame automatically is named as such (it used to fail with a message
+// about a light the user never set); a model whose triangles all have zero area is an error
+// (it used to render "faces 0/6" and an all-white mask without a word).
+TEST(SceneLibrary, ObjScenesThatCannotBeFramedOrShadowedAreErrors) {
+  auto expect_error = [](const std::string& name, const std::string& text, const std::string& needle) {
+    const std::string path = test::binary_path("core/obj/" + name);
+    std::ofstream(path) << text;
+    try {
+      make_obj_scene(path);
+      ADD_FAILURE() << name << " loaded";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  expect_error("huge.obj", "v 0 0 0\nv 1e38 0 0\nv 0 1e38 0\nf 1 2 3\n", "too large to frame");
+  expect_error("flat.obj", "v 0 0 0\nv 0 0 0\nv 0 0 0\nv 1 1 1\nf 1 2 3\nf 1 2 4\n", "zero area");
+  // A sliver of tiny but non-zero area is a model.
+  const std::string ok = test::binary_path("core/obj/sliver.obj");
+  std::ofstream(ok) << "v 0 0 0\nv 1 0 0\nv 0 1e-3 0\nf 1 2 3\n";
+  EXPECT_NO_THROW(make_obj_scene(ok));
+}
+
 TEST(SceneLibrary, Room100kUsesTheCameraAndLightOfItsHeader) {
   if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   std::vector<std::string> notes;

@@ -244,6 +244,70 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   EXPECT_NE(svg.find("map bytes touched"), std::string::npos);
 }
 
+// Every input is checked before the first expensive step (the camera pass and the reference),
+// and nothing is written: empty, doubled and duplicate list items, a projector technique without
+// a projector, a plot path that is a folder.
+TEST(Mains, SweepInputsAreCheckedBeforeAnyWork) {
+  const std::string out = test::binary_path("sweep_checks_out");
+  std::filesystem::remove_all(out);
+  const std::string base = "resolution_sweep --quick --out " + out;
+  expect_clear_error(base + " --techniques ''", "--techniques: empty name");
+  expect_clear_error(base + " --techniques ,,", "--techniques: empty name");
+  expect_clear_error(base + " --techniques csm,,tsm", "--techniques: empty name");
+  expect_clear_error(base + " --techniques csm,csm", "given twice");
+  expect_clear_error(base + " --resolutions 64,64", "given twice");
+  expect_clear_error(base + " --resolutions 64,", "--resolutions");
+  expect_clear_error(base + " --techniques psm", "needs a slide projector");
+  expect_clear_error(base + " --plot " + test::binary_path(""), "is a folder");
+  EXPECT_FALSE(std::filesystem::exists(out + "/sweep.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/reference_mask.exr"));
+}
+
+// Numbers and lists are parsed strictly, and the raw spelling never reaches labels.
+TEST(Mains, NumbersAndListsAreStrict) {
+  const std::string out = test::binary_path("strict_out");
+  const std::string base = "render --width 32 --height 24 --repeats 1 --out " + out;
+  expect_clear_error(base + " --technique csm:res=+64", "'res' expects an integer");
+  expect_clear_error(base + " --technique csm:bias=0x1p-3", "'bias' expects a number");
+  expect_clear_error(base + " --technique 'csm:res= 64'", "'res' expects an integer");
+  expect_clear_error(base + " --technique csm --eye 0,3,8,", "--eye");
+  expect_clear_error(base + " --technique csm --slide grid:amp=1,amp=0.5,freq=2", "given twice");
+  expect_clear_error(base + " --technique csm --slide grid:amp=1,freq=2,", "--slide");
+  expect_clear_error(base + " --technique csm:res=99999", "outside [1, 8192]");
+}
+
+// One prefix per message: an error raised by the metric library in the metric program is not
+// named twice.
+TEST(Mains, ErrorsNameTheirSourceOnce) {
+  const std::string a = test::binary_path("prefix_a"), b = test::binary_path("prefix_b");
+  ASSERT_EQ(run("render --technique csm:res=16 --width 32 --height 24 --repeats 1 --out " + a).exit_code, 0);
+  ASSERT_EQ(run("render --technique csm:res=16 --width 40 --height 24 --repeats 1 --out " + b).exit_code, 0);
+  const ProcResult r = run("metric " + a + "/mask.exr " + b + "/mask.exr");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.find("metric: metric:"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.rfind("metric: ", 0), 0u) << r.err;
+}
+
+// A reference read from the cache was not timed: null times in JSON, empty CSV fields, and no
+// performance score for the reference row (the table shows "-").
+TEST(Mains, CachedReferenceTimesAreNull) {
+  const std::string out = test::binary_path("cached_ref_out");
+  const std::string cache = test::binary_path("cached_ref_cache");
+  const std::string cmd = "SHADOWLAB_CACHE=" + cache + " " + std::string(SHADOWLAB_BINARY_DIR) +
+                          "/experiments/resolution_sweep --quick --width 64 --height 48 --resolutions 32 --out " + out +
+                          " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_EQ(std::system(cmd.c_str()), 0);  // second run: the reference comes from the cache
+  const nlohmann::json j = nlohmann::json::parse(file_bytes(out + "/sweep.json"));
+  EXPECT_TRUE(j["reference"]["from_cache"].get<bool>());
+  EXPECT_TRUE(j["reference"]["shadow_ms"].is_null());
+  EXPECT_FALSE(j["reference"].contains("performance"));
+  EXPECT_TRUE(j["rows"][0]["shadow_ms"].is_number());
+  const std::string csv = file_bytes(out + "/sweep.csv");
+  const std::string ref_line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  EXPECT_NE(ref_line.find("100.0000,,,,,1.000000"), std::string::npos) << ref_line;
+}
+
 TEST(Mains, AlphaFlagsAreChecked) {
   const std::string out = test::binary_path("alpha_flags_out");
   expect_clear_error("render --technique csm --alpha-cutoff 1.5 --out " + out, "--alpha-cutoff");

@@ -1,4 +1,4 @@
-#include "techniques/technique_spec.h"
+#include "core/spec.h"
 
 #include <algorithm>
 
@@ -7,11 +7,11 @@
 
 namespace shadowlab {
 
-TechniqueSpec parse_technique_spec(const std::string& text, const std::string& flag) {
-  TechniqueSpec spec;
+Spec parse_spec(const std::string& text, const std::string& flag) {
+  Spec spec;
   const size_t colon = text.find(':');
   spec.name = text.substr(0, colon);
-  if (spec.name.empty()) throw InputError(flag, "empty technique name in '" + text + "'");
+  if (spec.name.empty()) throw InputError(flag, "empty name in '" + text + "'");
   if (colon != std::string::npos) {
     const std::string rest = text.substr(colon + 1);
     size_t pos = 0;
@@ -31,7 +31,7 @@ TechniqueSpec parse_technique_spec(const std::string& text, const std::string& f
   return spec;
 }
 
-std::string spec_text(const TechniqueSpec& spec) {
+std::string spec_text(const Spec& spec) {
   std::string text = spec.name;
   char sep = ':';
   for (const auto& [k, v] : spec.params) {
@@ -51,21 +51,21 @@ std::vector<std::string> split_spec_list(const std::string& text) {
                            token.find(':') == std::string::npos && !out.empty();
     if (continues)
       out.back() += "," + token;
-    else if (!token.empty())
-      out.push_back(token);
+    else
+      out.push_back(token);  // empty too: parse_spec names it, instead of it being dropped
     pos = comma + 1;
   }
   return out;
 }
 
-SpecReader::SpecReader(const TechniqueSpec& spec, std::string flag)
+SpecReader::SpecReader(const Spec& spec, std::string flag)
     : spec_(spec), flag_(std::move(flag)) {}
 
 namespace {
 
 // Looks up `key`, parses it with `parse` and checks [lo, hi]; `what` names the expected kind.
 template <class T, class Parse>
-T get_number(const TechniqueSpec& spec, const std::string& flag, std::vector<std::string>& used,
+T get_number(const Spec& spec, const std::string& flag, std::vector<std::string>& used,
              const std::string& key, T fallback, T lo, T hi, Parse parse, const char* what) {
   used.push_back(key);
   const auto it = spec.params.find(key);
@@ -75,7 +75,7 @@ T get_number(const TechniqueSpec& spec, const std::string& flag, std::vector<std
     throw InputError(flag, spec.name + ": '" + key + "' expects " + what + ", got '" + it->second + "'");
   if (v < lo || v > hi)
     throw InputError(flag, spec.name + ": '" + key + "' = " + it->second + " is outside [" +
-                               std::to_string(lo) + ", " + std::to_string(hi) + "]");
+                               number_text(double(lo)) + ", " + number_text(double(hi)) + "]");
   return v;
 }
 
