@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <memory>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include "core/error.h"
 #include "core/obj_text_check.h"
@@ -419,6 +421,70 @@ Scene load_obj_scene(const std::string& path, std::vector<std::string>* notes_ou
   return scene;
 }
 
+namespace {
+
+// Edit distance of two short words, an adjacent swap counting as one edit (optimal string
+// alignment; a typo check, so plain O(n·m)).
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// A view header line's keys must be spelled right, or its light or camera would be dropped
+// without a word. Only lines holding a position "(x,y,z)" are view header lines (other
+// comments are free text); in them every position must follow light, eye, target or up, and a
+// word directly before a number that is within two edits of near, far or fov must be that key.
+void check_view_header_line(const std::string& path, size_t line_no, const std::string& line) {
+  static const char* const kVectorKeys[] = {"light", "eye", "target", "up"};
+  static const char* const kNumberKeys[] = {"near", "far", "fov"};
+  auto fail = [&](const std::string& what) {
+    throw InputError(path, "line " + std::to_string(line_no) + " (view header): " + what);
+  };
+  auto is_vector_at = [&](size_t i) {  // "(" number "," number "," number ")"
+    float x, y, z;
+    char close = 0;
+    return std::sscanf(line.c_str() + i, "( %f , %f , %f %c", &x, &y, &z, &close) == 4 && close == ')';
+  };
+  bool has_vector = false;
+  for (size_t i = 0; i < line.size() && !has_vector; ++i) has_vector = line[i] == '(' && is_vector_at(i);
+  if (!has_vector) return;
+  std::string word;  // the last word, lower case, while only spaces follow it
+  for (size_t i = 0; i < line.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(line[i]);
+    if (std::isalpha(c)) {
+      if (i == 0 || !std::isalpha(static_cast<unsigned char>(line[i - 1]))) word.clear();
+      word += char(std::tolower(c));
+      continue;
+    }
+    if (c == ' ' || c == '\t') continue;
+    if (c == '(' && is_vector_at(i)) {
+      if (std::none_of(std::begin(kVectorKeys), std::end(kVectorKeys), [&](const char* k) { return word == k; }))
+        fail("a position follows '" + word + "', not light, eye, target or up");
+    } else if ((std::isdigit(c) || c == '-' || c == '.') && !word.empty() &&
+               (i == 0 || !std::isalnum(static_cast<unsigned char>(line[i - 1])))) {
+      // The nearest key within two edits (ties: the first), unless the word is a key.
+      const char* nearest = nullptr;
+      size_t best = 3;
+      for (const char* k : kNumberKeys) {
+        const size_t dist = edit_distance(word, k);
+        if (dist < best) best = dist, nearest = k;
+      }
+      if (nearest && best > 0) fail("'" + word + "' looks like a misspelled '" + nearest + "'");
+    }
+    word.clear();
+  }
+}
+
+}  // namespace
+
 ObjViewHeader read_obj_view_header(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
@@ -438,10 +504,13 @@ ObjViewHeader read_obj_view_header(const std::string& path) {
     return std::sscanf(line.c_str() + k + std::strlen(key), " %f", &out) == 1 && std::isfinite(out);
   };
   std::string line;
+  size_t line_no = 0;
   while (std::getline(in, line)) {
+    ++line_no;
     const size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos) continue;
     if (line[first] != '#') break;  // the header ends at the first statement
+    check_view_header_line(path, line_no, line);
     vec3 p;
     if (line.find("light") != std::string::npos && vec_after(line, "light", p)) {
       PointLight l;

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -52,24 +53,23 @@ void check_bytes(const std::string& path, std::string_view text) {
   }
 }
 
-// Splits a line into at most kMax whitespace-separated tokens; `count` may exceed kMax.
+// The whitespace-separated tokens of a line (storage reused from line to line).
 struct Tokens {
-  static constexpr size_t kMax = 64;
-  std::array<std::string_view, kMax> tok;
+  std::vector<std::string_view> tok;
   size_t count = 0;
 };
 
 void tokenize(std::string_view line, Tokens& out) {
-  out.count = 0;
+  out.tok.clear();
   size_t i = 0;
   while (i < line.size()) {
     while (i < line.size() && is_space(line[i])) ++i;
     if (i >= line.size()) break;
     const size_t b = i;
     while (i < line.size() && !is_space(line[i])) ++i;
-    if (out.count < Tokens::kMax) out.tok[out.count] = line.substr(b, i - b);
-    ++out.count;
+    out.tok.push_back(line.substr(b, i - b));
   }
+  out.count = out.tok.size();
 }
 
 // Printable, shortened copy of a token for error messages (garbage files hold binary bytes).
@@ -198,7 +198,7 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
                  (lo == hi ? "" : ".." + std::to_string(hi)) + " numbers, got " +
                  std::to_string(args));
       const size_t index = (is_v ? s.positions : is_vn ? s.normals : s.texcoords) + 1;
-      for (size_t i = 1; i < t.count && i < Tokens::kMax; ++i) {
+      for (size_t i = 1; i < t.count; ++i) {
         double value = 0.0;
         const Num r = parse_number(t.tok[i], value);
         if (r == Num::kNotNumber)
@@ -215,10 +215,6 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
     } else if (key == "f") {
       if (args < 3)
         fail(path, line_no, "face with " + std::to_string(args) + " corners (needs 3+)");
-      if (t.count > Tokens::kMax)
-        fail(path, line_no,
-             "face with " + std::to_string(args) + " corners (at most " +
-                 std::to_string(Tokens::kMax - 1) + " supported)");
       for (size_t i = 1; i < t.count; ++i) check_corner(path, line_no, t.tok[i], s, max_index);
       ++s.faces;
       s.triangles += args - 2;
@@ -266,7 +262,7 @@ void check_mtl_text(const std::string& path, std::string_view text) {
       if (t.count <= first) fail(path, line_no, quoted(key) + " without a value");
       // Kd may also be "Kd spectral file" or "Kd xyz x y z": only plain numbers are checked.
       if (key == "Kd" && (t.tok[1] == "spectral" || t.tok[1] == "xyz")) continue;
-      for (size_t i = first; i < t.count && i < Tokens::kMax; ++i) {
+      for (size_t i = first; i < t.count; ++i) {
         double v = 0.0;
         if (parse_number(t.tok[i], v) != Num::kOk)
           fail(path, line_no, quoted(key) + " has an invalid value '" + printable(t.tok[i]) + "'");

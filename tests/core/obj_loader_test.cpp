@@ -152,6 +152,36 @@ TEST(ObjLoader, Utf16IsNamed) {
   expect_load_error(write_file("u16b.obj", u16_no_bom), {"u16b.obj", "UTF-16"});
 }
 
+// A legal polygon of any corner count is triangulated (more than 63 corners used to be refused):
+// a convex 100-gon gives 98 triangles covering the disc's area.
+TEST(ObjLoader, LargePolygonsAreTriangulated) {
+  std::string text, face = "f";
+  const int n = 100;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2.0 * 3.14159265358979 * i / n;
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on " " + std::string.
+    text += "v ";
+    text += std::to_string(std::cos(a));
+    text += ' ';
+    text += std::to_string(std::sin(a));
+    text += " 0\n";
+    face += ' ';
+    face += std::to_string(i + 1);
+  }
+  const Scene s = load_obj_scene(write_file("poly100.obj", text + face + "\n"));
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.triangle_count(), size_t(n - 2));
+  double area = 0.0;
+  const Mesh& m = s.meshes[0];
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+               c = m.positions[m.indices[3 * t + 2]];
+    area += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+  }
+  // The regular n-gon's area: n/2 · sin(2π/n) (float vertices: within 1e-5).
+  EXPECT_NEAR(area, 0.5 * n * std::sin(2.0 * 3.14159265358979 / n), 1e-5);
+}
+
 TEST(ObjLoader, ByteOrderMarkIsSkipped) {
   // tinyobjloader alone would drop the first vertex and fail on "f 1 2 3".
   const Scene s =
@@ -317,6 +347,27 @@ TEST(ObjLoader, ViewHeaderIsParsed) {
   const ObjViewHeader none = read_obj_view_header(write_file("no_header.obj", kTriangle));
   EXPECT_FALSE(none.light.has_value());
   EXPECT_FALSE(none.camera.has_value());
+}
+
+// Misspelled keys in the view header are errors naming the line (they used to drop the light or
+// camera silently); free-text comments without a position are still free.
+TEST(ObjLoader, ViewHeaderTyposAreErrors) {
+  auto expect_header_error = [](const std::string& name, const std::string& header, const std::string& needle) {
+    try {
+      read_obj_view_header(write_file(name, header + kTriangle + "f 1 2 3\n"));
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("line"), std::string::npos) << e.what();
+    }
+  };
+  expect_header_error("typo_light.obj", "# point ligth (0,4,0), near 0.05 far 40\n", "'ligth'");
+  expect_header_error("typo_target.obj", "# camera eye (0,4.5,9.5) targte (0,3,0)\n", "'targte'");
+  expect_header_error("typo_near.obj", "# light (0,4,0) naer 0.05 far 40\n", "misspelled 'near'");
+  expect_header_error("typo_fov.obj", "# camera eye (0,1,5) target (0,0,0) vertical fvo 45\n", "misspelled 'fov'");
+  const ObjViewHeader free = read_obj_view_header(
+      write_file("free_text.obj", std::string("# made with a tool (v2), far from perfect: 3 parts\n") + kTriangle));
+  EXPECT_FALSE(free.light.has_value());
 }
 
 // ---- real assets ---------------------------------------------------------------------------
