@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +50,24 @@ bool read_file_bytes(const std::string& path, size_t min_bytes, std::vector<char
   in.seekg(0, std::ios::beg);
   out.resize(static_cast<size_t>(size));
   return bool(in.read(out.data(), size));
+}
+
+bool folder_is_writable(const std::string& dir, std::string& reason) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    reason = ec.message();
+    return false;
+  }
+  const std::string probe = dir + "/.write_probe_" + std::to_string(::getpid());
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) {
+    reason = std::strerror(errno);
+    return false;
+  }
+  std::fclose(f);
+  std::remove(probe.c_str());
+  return true;
 }
 
 }  // namespace shadowlab

@@ -14,6 +14,10 @@ namespace shadowlab {
 void write_file_atomically(const std::string& dir, const std::string& path,
                            const std::vector<char>& bytes, const std::string& what);
 
+// Whether files can be created in `dir` (created if needed): a probe file is written and
+// removed. On false, `reason` says why (the OS's words).
+bool folder_is_writable(const std::string& dir, std::string& reason);
+
 // Reads the whole file into `out`; false when it cannot be opened or read or is shorter than
 // min_bytes (a cache miss, never an error).
 bool read_file_bytes(const std::string& path, size_t min_bytes, std::vector<char>& out);

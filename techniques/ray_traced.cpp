@@ -1,6 +1,9 @@
 #include "techniques/ray_traced.h"
 
 #include <chrono>
+#include <cstdio>
+
+#include "core/cache_file.h"
 
 #include "core/rng.h"
 #include "core/timer.h"
@@ -30,12 +33,20 @@ ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const
   ShadowResult res;
   // The hard mask is keyed as spp 0 so it never collides with a soft one.
   const int key_spp = hard ? 0 : spp;
-  const std::string key = options.cache_dir.empty() ? "" : reference_key(scene, gbuffer, key_spp, seed);
+  std::string key = options.cache_dir.empty() ? "" : reference_key(scene, gbuffer, key_spp, seed);
   if (!key.empty() && load_cached_reference(options.cache_dir, key, res.mask) &&
       res.mask.width == gbuffer.width && res.mask.height == gbuffer.height) {
     res.from_cache = true;
     res.notes = "reference from cache " + cached_reference_path(options.cache_dir, key);
     return res;
+  }
+  // A cache folder that cannot take the result is found out before the work, not after it: the
+  // reference is then computed and used but not cached (a warning says so).
+  std::string why;
+  if (!key.empty() && !folder_is_writable(options.cache_dir, why)) {
+    std::fprintf(stderr, "warning: reference cache folder %s is not writable (%s): the reference is not cached\n",
+                 options.cache_dir.c_str(), why.c_str());
+    key.clear();
   }
   auto t0 = std::chrono::steady_clock::now();
   EmbreeScene rt(scene);
@@ -49,7 +60,14 @@ ShadowResult run_ray_traced(const TechniqueSpec& spec, const Scene& scene, const
     res.mask = soft_visibility(rt, scene, gbuffer, spp, seed, &line);
   }
   res.lookup_ms = ms_since(t0);
-  if (!key.empty()) store_cached_reference(options.cache_dir, key, res.mask);
+  // Never lose computed work: a write that fails anyway (a full disk) is a warning.
+  if (!key.empty()) {
+    try {
+      store_cached_reference(options.cache_dir, key, res.mask);
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "warning: reference not cached: %s\n", e.what());
+    }
+  }
   res.notes = hard ? "hard shadows, 1 ray per pixel"
                    : std::to_string(spp) + " rays per pixel on a sphere light of radius " +
                          std::to_string(scene.light.radius) + " m";

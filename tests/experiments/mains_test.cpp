@@ -25,10 +25,15 @@ struct ProcResult {
 };
 
 // Runs build/experiments/<cmd> with args, capturing stdout and stderr.
-ProcResult run(const std::string& cmd) {
+ProcResult run_env(const std::string& env, const std::string& cmd);
+ProcResult run(const std::string& cmd) { return run_env("", cmd); }
+
+// Runs experiments/<cmd> with `env` ("NAME=value …") in front.
+ProcResult run_env(const std::string& env, const std::string& cmd) {
   // One stderr file per process: CTest runs the tests of this file in parallel processes.
   const std::string err_path = test::binary_path("mains_stderr_" + std::to_string(getpid()) + ".txt");
-  const std::string full = std::string(SHADOWLAB_BINARY_DIR) + "/experiments/" + cmd + " 2>" + err_path;
+  const std::string full = env + (env.empty() ? "" : " ") + std::string(SHADOWLAB_BINARY_DIR) +
+                           "/experiments/" + cmd + " 2>" + err_path;
   ProcResult r;
   FILE* p = popen(full.c_str(), "r");
   if (!p) return r;
@@ -306,6 +311,20 @@ TEST(Mains, CachedReferenceTimesAreNull) {
   const std::string csv = file_bytes(out + "/sweep.csv");
   const std::string ref_line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
   EXPECT_NE(ref_line.find("100.0000,,,,,1.000000"), std::string::npos) << ref_line;
+}
+
+// A cache folder that cannot be written: the reference is computed, used and written to --out,
+// with one warning (it used to be computed, then the run failed with no mask written).
+TEST(Mains, UnwritableCacheLosesNoWork) {
+  const std::string blocker = test::binary_path("cache_blocker_file");
+  std::ofstream(blocker) << "a file, not a folder";
+  const std::string out = test::binary_path("unwritable_cache_out");
+  std::filesystem::remove_all(out);
+  const ProcResult r = run_env("SHADOWLAB_CACHE=" + blocker + "/cache",
+                               "render --technique rt:spp=4 --width 64 --height 48 --out " + out);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out + "/mask.exr"));
+  EXPECT_NE(r.err.find("not writable"), std::string::npos) << r.err;
 }
 
 TEST(Mains, AlphaFlagsAreChecked) {
