@@ -17,6 +17,8 @@
 // The stb implementation lives in libstb.so (linked through PkgConfig::STB): declarations only.
 #include <stb_image_write.h>
 
+#include "core/error.h"
+#include "core/output_file.h"
 #include "core/texture.h"
 
 namespace shadowlab {
@@ -55,12 +57,18 @@ void write_exr_channel(const std::string& path, const Image<T>& img, const char*
     Imf::Header header(img.width, img.height);
     header.compression() = Imf::ZIP_COMPRESSION;  // lossless: round trips are bit-exact
     header.channels().insert(name, Imf::Channel(type));
-    Imf::OutputFile file(path.c_str(), header);
-    Imf::FrameBuffer fb;
-    fb.insert(name, Imf::Slice(type, reinterpret_cast<char*>(const_cast<T*>(img.data.data())),
-                               sizeof(T), sizeof(T) * size_t(img.width)));
-    file.setFrameBuffer(fb);
-    file.writePixels(img.height);
+    OutputFile out(path);  // a failed write leaves no truncated file under `path`
+    {
+      Imf::OutputFile file(out.temp_path().c_str(), header);
+      Imf::FrameBuffer fb;
+      fb.insert(name, Imf::Slice(type, reinterpret_cast<char*>(const_cast<T*>(img.data.data())),
+                                 sizeof(T), sizeof(T) * size_t(img.width)));
+      file.setFrameBuffer(fb);
+      file.writePixels(img.height);
+    }
+    out.commit();
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path, std::string("cannot write EXR: ") + e.what());
   }
@@ -133,13 +141,7 @@ void write_png(const std::string& path, int w, int h, int comp, const std::vecto
   };
   if (!stbi_write_png_to_func(sink, &encoded, w, h, comp, px.data(), w * comp))
     throw InputError(path, "PNG encoding failed");
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) throw InputError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-  const size_t written = std::fwrite(encoded.data(), 1, encoded.size(), f);
-  const int write_errno = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (written != encoded.size() || !closed)
-    throw InputError(path, std::string("cannot write: ") + std::strerror(write_errno));
+  write_text_file(path, std::string(encoded.begin(), encoded.end()));
 }
 
 }  // namespace
@@ -177,9 +179,15 @@ void write_exr_rgb(const std::string& path, const ImageF& rgb) {
                                      reinterpret_cast<char*>(const_cast<float*>(rgb.plane(c))),
                                      sizeof(float), sizeof(float) * size_t(rgb.width)));
     }
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(fb);
-    file.writePixels(rgb.height);
+    OutputFile out(path);
+    {
+      Imf::OutputFile file(out.temp_path().c_str(), header);
+      file.setFrameBuffer(fb);
+      file.writePixels(rgb.height);
+    }
+    out.commit();
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path, std::string("cannot write EXR: ") + e.what());
   }

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include "core/bunny_scene.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/mesh_lod.h"
+#include "core/output_file.h"
 #include "core/scene_library.h"
 #include "core/texture.h"
 #include "core/timer.h"
@@ -140,8 +142,7 @@ std::string masking_tables(const MaskingResult& r) {
 }
 
 void write_masking_csv(const std::string& path, const MaskingResult& r) {
-  std::ofstream f(path);
-  if (!f) throw InputError(path, "cannot open for writing");
+  std::ostringstream f;
   f << "level,triangles,slide,ssim,rmse,visible,visible_masked,camera_ms,shadow_ms\n";
   for (const MaskingLevel& L : r.levels)
     for (size_t k = 0; k < L.cells.size(); ++k) {
@@ -150,7 +151,7 @@ void write_masking_csv(const std::string& path, const MaskingResult& r) {
         << ',' << c.rmse << ',' << c.visible.plain << ',' << c.visible.masked << ','
         << L.camera_ms << ',' << L.shadow_ms << '\n';
     }
-  if (!f) throw InputError(path, "cannot write");
+  write_text_file(path, f.str());
 }
 
 ImageF masking_contact_sheet(const MaskingResult& r, int max_cell_width) {

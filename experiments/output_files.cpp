@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/output_file.h"
 
 namespace shadowlab {
 
@@ -23,9 +24,7 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
   j["faces_rendered"] = r.faces_rendered;
   j["from_cache"] = r.from_cache;
   j["notes"] = r.notes;
-  std::ofstream f(base + "timing.json");
-  f << j.dump(2) << "\n";
-  if (!f) throw InputError(base + "timing.json", "cannot write");
+  write_text_file(base + "timing.json", j.dump(2) + "\n");
 }
 
 nlohmann::json timing_json(const ShadowResult& r) {

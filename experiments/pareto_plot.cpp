@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/output_file.h"
 
 namespace shadowlab {
 
@@ -331,11 +332,11 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
 void write_pareto_svg(const std::string& path, const std::vector<PlotPoint>& points,
                       const std::string& title) {
   const std::string text = pareto_svg(points, title);
-  std::ofstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, "cannot write");
-  f << text;
-  f.close();
-  if (!f) throw InputError(path, "cannot write");
+  try {
+    write_text_file(path, text);
+  } catch (const InputError&) {
+    throw InputError(path, "cannot write");
+  }
 }
 
 }  // namespace shadowlab

@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/output_file.h"
 #include "core/timer.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/output_files.h"
@@ -194,7 +196,7 @@ nlohmann::json row_json(const SweepRow& row) {
 }  // namespace
 
 void write_sweep_csv(const std::string& path, const SweepResult& r) {
-  std::ofstream f(path);
+  std::ostringstream f;
   f << "label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
        "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
   auto add = [&](const SweepRow& row) {
@@ -219,7 +221,7 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
   };
   add(r.reference);
   for (const SweepRow& row : r.rows) add(row);
-  if (!f) throw InputError(path, "cannot write");
+  write_text_file(path, f.str());
 }
 
 void write_sweep_json(const std::string& path, const SweepResult& r) {
@@ -231,9 +233,7 @@ void write_sweep_json(const std::string& path, const SweepResult& r) {
   j["reference"] = row_json(r.reference);
   j["rows"] = nlohmann::json::array();
   for (const SweepRow& row : r.rows) j["rows"].push_back(row_json(row));
-  std::ofstream f(path);
-  f << j.dump(2) << "\n";
-  if (!f) throw InputError(path, "cannot write");
+  write_text_file(path, j.dump(2) + "\n");
 }
 
 std::vector<PlotPoint> sweep_plot_points(const SweepResult& r) {

@@ -327,6 +327,27 @@ TEST(Mains, UnwritableCacheLosesNoWork) {
   EXPECT_NE(r.err.find("not writable"), std::string::npos) << r.err;
 }
 
+// A write that fails part way (here a file-size limit of 2 KiB, as a full disk would) is an
+// error naming the file, and leaves no truncated file under its name (a truncated texel.exr used
+// to remain).
+TEST(Mains, FailedWritesLeaveNoTruncatedFiles) {
+  const std::string out = test::binary_path("fsize_out");
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  const std::string cmd = "bash -c \"trap '' XFSZ; ulimit -f 2; exec " + std::string(SHADOWLAB_BINARY_DIR) +
+                          "/experiments/render --technique csm:res=64 --width 96 --height 72 --repeats 1 --out " +
+                          out + "\" >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  // mask.exr (~1.1 KiB) fits under the limit and is complete; texel.exr does not fit.
+  EXPECT_FALSE(std::filesystem::exists(out + "/texel.exr"));
+  EXPECT_EQ(read_exr_mask(out + "/mask.exr").width, 96);
+  for (const auto& entry : std::filesystem::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".partial-"), std::string::npos) << "temporary left: " << name;
+  }
+}
+
 TEST(Mains, AlphaFlagsAreChecked) {
   const std::string out = test::binary_path("alpha_flags_out");
   expect_clear_error("render --technique csm --alpha-cutoff 1.5 --out " + out, "--alpha-cutoff");
