@@ -247,6 +247,17 @@ void write_png_rgb(const std::string& path, const ImageF& image) {
   write_png(path, image.width, image.height, 3, px);
 }
 
+std::pair<int, int> exr_image_size(const std::string& path) {
+  require_readable(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    return {dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1};
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot read EXR: ") + e.what());
+  }
+}
+
 ImageF load_texture_rgba(const std::string& path) {
   return texture_to_linear_rgba(load_texture8(path));
 }

@@ -4,6 +4,7 @@
 // (PNG/JPG via stb) returns linear RGBA floats in [0,1] for alpha testing and slides.
 // Every failure throws InputError naming the file and the reason.
 #include <string>
+#include <utility>
 
 #include "core/image.h"
 
@@ -15,6 +16,8 @@ void write_exr_texels(const std::string& path, const ImageU32& texels);
 ImageU32 read_exr_texels(const std::string& path);
 // Linear RGB EXR (float32 channels R, G, B) of a 3-channel image (shaded projector renders).
 void write_exr_rgb(const std::string& path, const ImageF& rgb);
+// Width and height of an EXR from its header (the data window), without reading pixels.
+std::pair<int, int> exr_image_size(const std::string& path);
 // Reads an EXR as linear RGB (3 channels): R, G, B if present (any pixel type, converted to
 // float), else a grey Y channel copied to all three. Throws InputError naming the file.
 ImageF read_exr_rgb(const std::string& path);

@@ -7,6 +7,7 @@
 #include "core/image_io.h"
 #include "core/parse_number.h"
 #include "core/spec.h"
+#include "core/texture.h"
 
 namespace shadowlab {
 namespace {
@@ -65,17 +66,34 @@ vec3 sample_slide(const ImageF& rgb, vec2 st) {
   return out;
 }
 
+// Slides are looked up bilinearly at the GBuffer points: beyond 4096² texels (16.8 M, ~200 MB
+// as float RGB) a slide only costs memory. A 261 KB black 8192² PNG used to peak at 1.84 GB.
+constexpr size_t kMaxSlideTexels = size_t(4096) * 4096;
+
+void check_slide_size(const std::string& path, std::pair<int, int> size) {
+  const size_t texels = size_t(size.first) * size_t(size.second);
+  if (texels > kMaxSlideTexels)
+    throw InputError(path, "slide is " + std::to_string(size.first) + "x" + std::to_string(size.second) +
+                               " (" + std::to_string(texels / 1000000) +
+                               " M texels, about 12 bytes each as float RGB); the limit is 4096x4096 "
+                               "texels: downscale it");
+}
+
 Slide make_slide(const std::string& spec, const std::string& flag) {
   Slide slide;
   slide.name = spec;
   if (ends_with(spec, ".png") || ends_with(spec, ".jpg") || ends_with(spec, ".jpeg")) {
-    const ImageF rgba = load_texture_rgba(spec);  // sRGB → linear, 4 channels
-    slide.rgb = ImageF(rgba.width, rgba.height, 3);
-    for (int c = 0; c < 3; ++c)
-      std::copy(rgba.plane(c), rgba.plane(c) + rgba.pixel_count(), slide.rgb.plane(c));
+    // The size is checked from the header before decoding; the 8-bit texels go straight to
+    // linear float RGB (about 20 bytes per texel at the peak, 12 kept).
+    check_slide_size(spec, image_file_size(spec));
+    const Texture8 tex = load_texture8(spec);
+    slide.rgb = ImageF(tex.width, tex.height, 3);
+    for (size_t i = 0; i < slide.rgb.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) slide.rgb.plane(c)[i] = srgb8_to_linear(tex.rgba[4 * i + size_t(c)]);
     return slide;
   }
   if (ends_with(spec, ".exr")) {
+    check_slide_size(spec, exr_image_size(spec));
     slide.rgb = read_exr_rgb(spec);
     for (float v : slide.rgb.data)
       if (!std::isfinite(v) || v < 0.0f)

@@ -28,6 +28,15 @@ std::array<float, 256> make_srgb_table() {
 
 }  // namespace
 
+std::pair<int, int> image_file_size(const std::string& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_file(file.get(), &w, &h, &comp))
+    throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
+  return {w, h};
+}
+
 Texture8 load_texture8(const std::string& path) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image.h"
@@ -33,6 +34,8 @@ struct Texture8 {
 // Loads a PNG/JPG/TGA/BMP (anything stb_image decodes; 16-bit files are reduced to 8 bits).
 // Throws InputError(path, "cannot open: <strerror>") or InputError(path, "cannot decode ...").
 Texture8 load_texture8(const std::string& path);
+// Width and height of a PNG/JPEG from its header, without decoding; InputError when unreadable.
+std::pair<int, int> image_file_size(const std::string& path);
 
 // sRGB transfer functions on [0, 1] (IEC 61966-2-1 piecewise curve).
 float srgb_to_linear(float srgb);

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "test_paths.h"
+
 #include "core/error.h"
 #include "core/parse_number.h"
 #include "core/slide.h"
@@ -58,6 +62,40 @@ TEST(Spec, SlideSpecsAreStrict) {
                           "grid:amp=1", "spot:amp=1", "spot:res=0x20", "grid:amp= 1,freq=2"})
     EXPECT_THROW(make_slide(bad, "--slide"), InputError) << bad;
   EXPECT_NO_THROW(make_slide("grid:amp=1,freq=2,res=64", "--slide"));
+}
+
+// A PNG header claiming w × h RGB pixels (signature, IHDR with its CRC, IEND): enough for the
+// size check, which must refuse it before any decoding.
+std::string png_header(uint32_t w, uint32_t h) {
+  auto crc32 = [](const std::string& bytes) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char b : bytes) {
+      c ^= b;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  auto be32 = [](uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  const std::string ihdr = "IHDR" + be32(w) + be32(h) + std::string{8, 2, 0, 0, 0};
+  const std::string iend = "IEND";
+  return std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + ihdr + be32(crc32(ihdr)) + be32(0) + iend +
+         be32(crc32(iend));
+}
+
+// A slide image larger than 4096² texels is refused from its header (an 8192² PNG of 261 KB
+// used to be decoded to a 1.84 GB peak).
+TEST(Spec, OversizedSlideImagesAreRefusedBeforeDecoding) {
+  const std::string path = test::binary_path("slide_8192.png");
+  std::ofstream(path, std::ios::binary) << png_header(8192, 8192);
+  try {
+    make_slide(path, "--slide");
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("8192x8192"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("limit"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
