@@ -112,6 +112,7 @@ std::vector<FlagDef> common_flags() {
       {"--projector-target", "X,Y,Z", "point the projector aims at (default: the scene's pose, else the camera target)"},
       {"--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)"},
       {"--projector-aspect", "A", "projector slide width / height (default 1)"},
+      {"--max-memory", "GB", "refuse runs estimated to need more memory (default: what the machine has available)"},
       {"--out", "DIR", "output folder"},
       {"--help", "", "print this help (with the technique registry)"},
       {"--list-techniques", "", "print every technique with its keys and defaults, then exit"},
@@ -250,6 +251,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
     return 1;
   }
+}
+
+uint64_t max_memory_bytes(const ParsedArgs& args) {
+  if (!args.has("--max-memory")) return 0;
+  return uint64_t(args.get_double("--max-memory", 0.0, 1e-6, 1e6) * 1e9);
 }
 
 void make_output_dir(const std::string& dir, const std::string& flag) {

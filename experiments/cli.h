@@ -2,6 +2,7 @@
 // Shared command-line handling of the experiment mains: a strict flag parser (unknown flag or
 // bad value → InputError naming the flag → one line on stderr, exit code 2), the common scene
 // flags, and the main wrapper.
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -50,6 +51,9 @@ Scene scene_from_args(const ParsedArgs& args);
 // light aimed at the camera target; --projector-* flags override). Without it, any
 // --projector-* flag is an InputError.
 void apply_projector_flags(const ParsedArgs& args, Scene& scene);
+
+// The --max-memory limit in bytes (0: not given).
+uint64_t max_memory_bytes(const ParsedArgs& args);
 
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
 // other exception → exit code 1. --list-techniques anywhere prints the registry and exits 0.

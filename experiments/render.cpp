@@ -6,6 +6,7 @@
 #include "core/image_io.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
+#include "experiments/memory_check.h"
 #include "experiments/output_files.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     if (args.has("--ambient") && !scene.projector.enabled)
       throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     validate_technique_for_scene(spec, scene, "--technique");
+    check_run_memory(scene, {spec}, max_memory_bytes(args), args.has("--max-memory") ? "--max-memory" : "--width");
     const std::string out = args.get("--out", "");
     make_output_dir(out, "--out");
 

@@ -142,6 +142,14 @@ void count_work(const MapParams& p, const LightMap& map, size_t looked_up, WorkC
 
 }  // namespace
 
+uint64_t light_map_bytes(const MapParams& p, const Scene& scene) {
+  const FaceLayout layout = map_layout(p, scene);
+  uint64_t texels = 0;
+  for (const LightFace& f : layout.faces) texels += f.texel_count();
+  const uint64_t planes = map_filter_ops(p.filter).stored_planes(p);
+  return texels * 4 * (1 + planes);
+}
+
 ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options) {
   if (p.layout == FaceLayoutKind::Projector && !scene.projector.enabled)

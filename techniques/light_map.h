@@ -45,6 +45,11 @@ void filter_light_map(const MapParams& p, LightMap& map);
 void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
                       const LightMap& map, ImageF& mask, ImageU32* texels);
 
+// Bytes the map of these params holds at once: every face's stored distances (4 B per texel),
+// the filter's planes (4 B each per texel) and the fused filter's double scratch (per face row
+// chunk, small); faces are counted as if all were needed.
+uint64_t light_map_bytes(const MapParams& p, const Scene& scene);
+
 // The whole pipeline with per-phase timings (medians of options.repeats) and work counts.
 ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options);

@@ -19,6 +19,7 @@ struct Entry {
   std::function<void(const TechniqueSpec&, const char* flag)> parse;
   std::function<ShadowResult(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&)> run;
   bool needs_projector = false;  // the projector layout: the scene needs --slide
+  std::function<uint64_t(const TechniqueSpec&, const Scene&, const char*)> map_bytes;
 };
 
 struct LayoutName {
@@ -38,7 +39,8 @@ std::vector<Entry> make_registry() {
   std::vector<Entry> rows;
   rows.push_back({"rt", "Embree ray tracing, the reference; keys: spp=256,hard=0,seed=1",
                   [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
-                  run_ray_traced});
+                  run_ray_traced, false,
+                  [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); }});
   for (const LayoutName& l : kLayouts)
     for (const MapFilterOps* f : map_filters()) {
       const FaceLayoutKind layout = l.kind;
@@ -53,7 +55,10 @@ std::vector<Entry> make_registry() {
                             const RunOptions& o) {
              return run_light_map(parse_map_params(s, layout, filter, o.flag), scene, g, o);
            },
-           layout == FaceLayoutKind::Projector});
+           layout == FaceLayoutKind::Projector,
+           [layout, filter](const TechniqueSpec& s, const Scene& scene, const char* flag) {
+             return light_map_bytes(parse_map_params(s, layout, filter, flag), scene);
+           }});
     }
   return rows;
 }
@@ -102,6 +107,13 @@ void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene,
   e.parse(spec, flag);
   if (e.needs_projector && !scene.projector.enabled)
     throw InputError(flag, spec.name + " needs a slide projector light (--slide)");
+}
+
+uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, const char* flag) {
+  const Entry& e = find(spec, flag);
+  // The projector layout needs the projector's aspect; without one validation already failed.
+  if (e.needs_projector && !scene.projector.enabled) return 0;
+  return e.map_bytes(spec, scene, flag);
 }
 
 std::vector<std::pair<std::string, std::string>> technique_list() {

@@ -74,6 +74,10 @@ void validate_technique(const TechniqueSpec& spec, const char* flag);
 // Checks what a technique needs of the scene (the projector layout needs a slide projector), so
 // that runs fail before any expensive step rather than after a reference.
 void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene, const char* flag);
+// Memory a technique's maps take at once (bytes): the stored faces, the filter's planes and
+// scratch; 0 for the ray tracer (its BVH is counted with the scene). An estimate for the
+// up-front check of experiments/memory_check.h, not a bound.
+uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, const char* flag);
 // Registered technique names with one-line descriptions (keys and defaults), for --help and
 // --list-techniques.
 std::vector<std::pair<std::string, std::string>> technique_list();

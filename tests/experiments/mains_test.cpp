@@ -348,6 +348,23 @@ TEST(Mains, FailedWritesLeaveNoTruncatedFiles) {
   }
 }
 
+// A run that cannot fit in memory is refused before any work with the estimate (16384² used
+// to run 33 s and end in std::bad_alloc, exit 1).
+TEST(Mains, RunsThatCannotFitAreRefusedUpFront) {
+  const std::string out = test::binary_path("memory_out");
+  const ProcResult small = run("render --technique csm --width 64 --height 48 --repeats 1 --max-memory 0.0001 --out " + out);
+  EXPECT_EQ(small.exit_code, 2);
+  EXPECT_NE(small.err.find("--max-memory: this run needs about"), std::string::npos) << small.err;
+  const ProcResult maps = run("render --technique cvsm:res=4096,blur=63 --width 64 --height 48 --max-memory 1 --out " + out);
+  EXPECT_EQ(maps.exit_code, 2);
+  EXPECT_NE(maps.err.find("maps 1.2 GB"), std::string::npos) << maps.err;  // 6·4102²·12 B
+  // The machine's own limit: 16384² needs ~31 GB of image memory, more than a 24 GB machine has.
+  const ProcResult huge = run("render --technique csm --width 16384 --height 16384 --out " + out);
+  EXPECT_EQ(huge.exit_code, 2) << huge.err;
+  EXPECT_NE(huge.err.find("--width: this run needs about"), std::string::npos) << huge.err;
+  EXPECT_EQ(run("render --technique csm --width 64 --height 48 --repeats 1 --max-memory 1 --out " + out).exit_code, 0);
+}
+
 TEST(Mains, AlphaFlagsAreChecked) {
   const std::string out = test::binary_path("alpha_flags_out");
   expect_clear_error("render --technique csm --alpha-cutoff 1.5 --out " + out, "--alpha-cutoff");

@@ -1,0 +1,31 @@
+#pragma once
+// The up-front memory check of the experiments: estimate what a run needs (GBuffer and its
+// visibility buffer, masks and texel images, the reference, each technique's maps, the scene's
+// geometry and BVH) and refuse it, before any work, when that exceeds the limit: --max-memory
+// GB when given, else what the machine has available (MemAvailable of /proc/meminfo).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "techniques/technique.h"
+
+namespace shadowlab {
+
+struct MemoryEstimate {
+  uint64_t pixels_bytes = 0;  // GBuffer, visibility buffer, masks, texel images, reference
+  uint64_t maps_bytes = 0;    // the largest technique's maps (techniques run one at a time)
+  uint64_t scene_bytes = 0;   // geometry, transformed vertices, bins, BVH
+  uint64_t total() const { return pixels_bytes + maps_bytes + scene_bytes; }
+};
+
+MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
+                                   const char* flag);
+// Bytes available: MemAvailable from /proc/meminfo (0 when unknown).
+uint64_t available_memory_bytes();
+// Throws InputError(flag of the size, "needs about X GB (…), more than the Y GB …") when the
+// estimate exceeds max_bytes (0: the available memory; unknown: no check).
+void check_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
+                      uint64_t max_bytes, const char* flag);
+
+}  // namespace shadowlab
