@@ -1,4 +1,4 @@
-// stability: the stiff and extreme cases (design.md §8) for every map-based technique, each row
+// stability: the stiff and extreme cases (docs/design.md §8) for every map-based technique, each row
 // with its error against Embree hard shadows and its expected bound. Exit code 1 if a bound fails.
 #include <cstdio>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The stiff and extreme cases of design.md §8 for the map-based techniques, each with its
+// The stiff and extreme cases of docs/design.md §8 for the map-based techniques, each with its
 // expected result stated as a bound. experiments/stability prints every row; the test in
 // tests/experiments asserts every bound. Each row compares a technique's mask with Embree's
 // hard-shadow mask evaluated at the same GBuffer points.

@@ -1,5 +1,5 @@
 #pragma once
-// The metric's blur (design.md §5.1): a k×k box mean with clamp-to-edge borders, accumulated in
+// The metric's blur (docs/design.md §5.1): a k×k box mean with clamp-to-edge borders, accumulated in
 // double and kept in double so the contour and coverage thresholds see no float rounding.
 #include "core/image.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Contour lines of a blurred mask and the contour-match score (design.md §5.2–5.3).
+// Contour lines of a blurred mask and the contour-match score (docs/design.md §5.2–5.3).
 #include <array>
 #include <cstdint>
 #include <span>

@@ -1,5 +1,5 @@
 #pragma once
-// Dark and lit area coverage (design.md §5.4), and the region definitions the acne and noise
+// Dark and lit area coverage (docs/design.md §5.4), and the region definitions the acne and noise
 // scores reuse.
 #include "metric/box_blur.h"
 

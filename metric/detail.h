@@ -1,5 +1,5 @@
 #pragma once
-// Shadow detail (design.md §5.6): how many screen pixels share one shadow-map texel.
+// Shadow detail (docs/design.md §5.6): how many screen pixels share one shadow-map texel.
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Plain per-pixel error of two masks: RMSE and PSNR (extra columns, design.md §5.9).
+// Plain per-pixel error of two masks: RMSE and PSNR (extra columns, docs/design.md §5.9).
 #include "core/image.h"
 
 namespace shadowlab {

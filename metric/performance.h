@@ -1,9 +1,9 @@
 #pragma once
-// Rendering-performance score (design.md §5.7).
+// Rendering-performance score (docs/design.md §5.7).
 
 namespace shadowlab {
 
-// Frame timings in milliseconds (medians of repeats, design.md §4): the frame with the shadow
+// Frame timings in milliseconds (medians of repeats, docs/design.md §4): the frame with the shadow
 // technique, and the same frame without shadows; the shadow cost is their difference.
 struct Timings {
   double shadowed_ms = 0.0;

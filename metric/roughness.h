@@ -1,6 +1,6 @@
 #pragma once
 // Acne (noise in the lit region) and noise (in the dark region) via the Roberts cross
-// (design.md §5.5).
+// (docs/design.md §5.5).
 #include <cstddef>
 
 #include "core/image.h"

@@ -1,6 +1,6 @@
 #pragma once
 // The shadow quality metric of Kluczek ("Quality Metric for Shadow Rendering") as pinned down in
-// design.md §5: every submetric, the four groups, the weighted total, and SSIM/RMSE/PSNR.
+// docs/design.md §5: every submetric, the four groups, the weighted total, and SSIM/RMSE/PSNR.
 #include "core/image.h"
 #include "metric/box_blur.h"
 #include "metric/contour.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Structural similarity (Wang, Bovik, Sheikh & Simoncelli 2004) of two masks, an extra column
-// of the metric (design.md §5.9).
+// of the metric (docs/design.md §5.9).
 #include "core/image.h"
 
 namespace shadowlab {

@@ -1,6 +1,6 @@
 #pragma once
 // On-disk cache of reference masks, keyed by a hash of everything that determines the image, so
-// the Embree scene is built only when a reference is not cached yet (design.md §7).
+// the Embree scene is built only when a reference is not cached yet (docs/design.md §7).
 //
 // File: <dir>/<key>.slref, a small own binary format (native little-endian):
 //   8 bytes  magic "SLREFMK1"

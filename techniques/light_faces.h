@@ -12,7 +12,7 @@
 //
 // Cube: 6 faces, the order, axes and tie-break of techniques/cube_faces.h; the owned region
 // is the 90° square [-1, 1]², the image is (res + 2·guard)² texels.
-// Tetrahedron: 4 faces with the light-space normals of design.md §6, 109.47° apart; a direction
+// Tetrahedron: 4 faces with the light-space normals of docs/design.md §6, 109.47° apart; a direction
 // belongs to argmax dot(dir, normal) (ties to the lower index). Each face owns a spherical
 // triangle whose corners are the other three faces' negated normals (70.53° off axis); its
 // gnomonic image is a triangle with circumradius 2√2, one corner along +up. The face's

@@ -2,7 +2,7 @@
 // Per-pixel lookup machinery of the light-map pipeline (techniques/light_map.h), shared by every
 // layout and filter: the receiver's face, texel coordinates, texel index and biased depth; the
 // bilinear and PCF taps (with cross-face taps for SeamMode::Cross); and the pixel loop that
-// applies design.md §4's mask rules (no geometry: 1; facing away from the light: 0).
+// applies docs/design.md §4's mask rules (no geometry: 1; facing away from the light: 0).
 #include <algorithm>
 #include <cmath>
 #include <vector>

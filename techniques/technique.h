@@ -30,7 +30,7 @@ struct WorkCounts {
   uint64_t bytes_touched() const { return bytes_written + bytes_read; }
 };
 
-// What a technique returns. Mask convention (design.md §4): visibility in [0,1], 1 where no
+// What a technique returns. Mask convention (docs/design.md §4): visibility in [0,1], 1 where no
 // geometry, 0 where the geometric normal faces away from the light.
 struct ShadowResult {
   ImageF mask;

@@ -4,7 +4,7 @@
 //  - every cube shadow-map face of the light (6 faces, 90°, the light's near plane) of the
 //    default scene, room1m and the bunny on a ground quad, rasterized with a shader that records
 //    the triangle per texel, against face_rays through the same texel centres.
-// Criterion (issue 3): the same primitive at >= 99.5 % of the covered pixels/texels, and where it
+// Criterion: the same primitive at >= 99.5 % of the covered pixels/texels, and where it
 // is the same, the view depth (1/inv_w, or GBuffer depth) within 1e-4 relative at >= 99.5 % of
 // them; covered-vs-hit disagreements (silhouettes) at <= 0.5 % of all pixels/texels. Where they
 // differ legitimately: pixel centres within float rounding of a shared edge (the rasterizer's
