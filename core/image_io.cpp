@@ -5,12 +5,17 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfVersion.h>
 
-#include <cerrno>
-#include <cstdio>
 #include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,11 +92,74 @@ void require_whole_window(const std::string& path, const Imf::Header& header) {
                                ")): crop or re-save it");
 }
 
+// No codec OpenEXR offers packs pixel data tighter than about 1000:1 (zlib's limit is 1032:1;
+// RLE, PIZ and the lossy ones far less), so a header that declares more than 2048 bytes of
+// pixels per byte of file is truncated or corrupt. Checked before anything is allocated: a
+// 300-byte file declaring 16384² pixels used to cost a 1 GB image and seconds of decoding.
+void require_plausible_size(const std::string& path, const Imf::Header& header, int channels,
+                            int bytes_per_value) {
+  const Imath::Box2i dw = header.dataWindow();
+  // In 64 bits: a window's extent overflows int for hostile headers.
+  const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
+  const long double declared = (long double)w * (long double)h * channels * bytes_per_value;
+  std::error_code ec;
+  const auto file_bytes = std::filesystem::file_size(path, ec);
+  if (!ec && declared > (long double)file_bytes * 2048.0L)
+    throw InputError(path, "declares " + std::to_string(w) + "x" + std::to_string(h) +
+                               " pixels but holds only " + std::to_string(file_bytes) +
+                               " bytes: truncated or corrupt");
+}
+
+// The header alone, read without opening the file for pixels (which would size and read its
+// chunk offset tables from the declared window first): single-part scanline or tiled images
+// only. Throws InputError naming the file.
+Imf::Header peek_exr_header(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char head[8] = {};
+  if (!f.read(head, 8) || !Imf::isImfMagic(head)) throw InputError(path, "is not an EXR file");
+  int version = 0;
+  std::memcpy(&version, head + 4, 4);  // little-endian in the file and on x86-64
+  if (Imf::isMultiPart(version) || Imf::isNonImage(version))
+    throw InputError(path, "multi-part and deep EXR files are not supported");
+  // Walk the attribute list (name, type, 32-bit size, value; an empty name ends it) before
+  // OpenEXR reads it: it allocates each value at its declared size, so a size beyond the file
+  // would cost gigabytes before failing.
+  std::error_code ec;
+  const uint64_t file_bytes = std::filesystem::file_size(path, ec);
+  uint64_t pos = 8;
+  for (int attribute = 0;; ++attribute) {
+    std::string name, type;
+    std::getline(f, name, '\0');
+    if (!f) throw InputError(path, "EXR header ends early");
+    if (name.empty()) break;
+    std::getline(f, type, '\0');
+    int32_t size = 0;
+    if (!f || !f.read(reinterpret_cast<char*>(&size), 4)) throw InputError(path, "EXR header ends early");
+    pos += name.size() + type.size() + 2 + 4;
+    if (size < 0 || uint64_t(size) > file_bytes - std::min(pos, file_bytes) || attribute > 10000)
+      throw InputError(path, "EXR header attribute '" + name.substr(0, 32) + "' declares " +
+                                 std::to_string(size) + " bytes, more than the file holds");
+    pos += uint64_t(size);
+    f.seekg(std::streamoff(pos));
+  }
+  Imf::StdIFStream is(path.c_str());
+  is.seekg(8);
+  Imf::Header header;
+  header.readFrom(is, version);
+  return header;
+}
+
 // Reads channel `name`, which must exist and have exactly type `type`.
 template <class T>
 Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelType type) {
   require_readable(path);
   try {
+    {
+      // Header checks before OpenEXR sizes anything from the declared window.
+      const Imf::Header peek = peek_exr_header(path);
+      require_whole_window(path, peek);
+      require_plausible_size(path, peek, 1, 2);
+    }
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imf::Channel* ch = header.channels().findChannel(name);
@@ -108,6 +176,7 @@ Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelT
     if (ch->xSampling != 1 || ch->ySampling != 1)
       throw InputError(path, std::string("channel '") + name + "' is subsampled");
     require_whole_window(path, header);
+    require_plausible_size(path, header, 1, int(sizeof(T)));
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;
@@ -196,6 +265,12 @@ void write_exr_rgb(const std::string& path, const ImageF& rgb) {
 ImageF read_exr_rgb(const std::string& path) {
   require_readable(path);
   try {
+    {
+      // Header checks before OpenEXR sizes anything from the declared window.
+      const Imf::Header peek = peek_exr_header(path);
+      require_whole_window(path, peek);
+      require_plausible_size(path, peek, 1, 2);
+    }
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imf::ChannelList& chans = header.channels();
@@ -203,6 +278,7 @@ ImageF read_exr_rgb(const std::string& path) {
     if (!rgb && !chans.findChannel("Y"))
       throw InputError(path, "has neither R, G, B nor Y channels");
     require_whole_window(path, header);
+    require_plausible_size(path, header, rgb ? 3 : 1, 2);  // half is the smallest pixel type
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;
@@ -250,9 +326,9 @@ void write_png_rgb(const std::string& path, const ImageF& image) {
 std::pair<int, int> exr_image_size(const std::string& path) {
   require_readable(path);
   try {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i dw = file.header().dataWindow();
-    return {dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1};
+    const Imath::Box2i dw = peek_exr_header(path).dataWindow();
+    return {int(std::min<long long>((long long)dw.max.x - dw.min.x + 1, INT_MAX)),
+            int(std::min<long long>((long long)dw.max.y - dw.min.y + 1, INT_MAX))};
   } catch (const std::exception& e) {
     throw InputError(path, std::string("cannot read EXR: ") + e.what());
   }

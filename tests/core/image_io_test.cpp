@@ -111,6 +111,18 @@ TEST(ImageIo, ExrDataWindowMustBeTheWholeImageFromTheOrigin) {
   }
 }
 
+// Found by fuzz/fuzz_exr: a 225-byte header whose first attribute declares 1.6 GB made OpenEXR
+// allocate (and zero) that much before failing. The attribute sizes are now checked against the
+// file first, and a header declaring far more pixels than the file can hold is refused.
+TEST(ImageIo, HostileExrHeadersAreRefusedBeforeAllocating) {
+  try {
+    read_exr_mask(test::source_path("tests/fixtures/exr_huge_attribute.exr"));
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("declares 1634231040 bytes"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ImageIo, MissingExrNamesTheFile) {
   const std::string path = test::binary_path("core/does_not_exist.exr");
   std::remove(path.c_str());

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (build-fuzz/) and runs each for SECONDS, one after the
+# other, on a working copy of its checked-in seed corpus (fuzz/corpus/<name>/). A crash, a hang
+# (> 10 s on one input) or an allocation over 2 GB stops the run with a non-zero exit and leaves
+# the input in build-fuzz/. Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+secs=${1:-30}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_spec fuzz_slide fuzz_exr)
+cxx=$(command -v clang++-14 || command -v clang++)
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$cxx" \
+      -DSHADOWLAB_FUZZ=ON >/dev/null
+cmake --build build-fuzz -j"$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}" >/dev/null
+for t in "${targets[@]}"; do
+  corpus=build-fuzz/corpus/$t
+  mkdir -p "$corpus"
+  cp -n fuzz/corpus/"${t#fuzz_}"/* "$corpus"/ 2>/dev/null || true
+  log=build-fuzz/$t.log
+  if ! (cd build-fuzz && ./fuzz/"$t" -max_total_time="$secs" -rss_limit_mb=2048 -timeout=10 \
+          -print_final_stats=1 "corpus/$t" >"$t.log" 2>&1); then
+    echo "fuzz: $t FAILED (see $log and the crash-*/timeout-*/oom-* input in build-fuzz/)" >&2
+    tail -n 30 "$log" >&2
+    exit 1
+  fi
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*')
+  echo "fuzz: $t ran ${secs}s: $execs executions, coverage $cov edges, no crash"
+done
