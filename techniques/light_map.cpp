@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/timer.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup_simd.h"
@@ -150,6 +151,13 @@ uint64_t light_map_bytes(const MapParams& p, const Scene& scene) {
   return texels * 4 * (1 + planes);
 }
 
+bool light_map_needs_progress(const MapParams& p, const FaceLayout& layout) {
+  uint64_t texels = 0;
+  for (const LightFace& f : layout.faces) texels += f.texel_count();
+  const uint64_t units = texels * (p.filter == MapFilter::Depth ? 1 : uint64_t(p.blur));
+  return units > 1000000000ull;  // ~2 s at ~2 ns per unit
+}
+
 ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options) {
   if (p.layout == FaceLayoutKind::Projector && !scene.projector.enabled)
@@ -161,20 +169,27 @@ ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer
   std::vector<bool> needed;
   size_t looked_up = 0;
   std::vector<double> faces_t, render_t, filter_t, map_t, lookup_t;
-  for (int rep = 0; rep < std::max(1, options.repeats); ++rep) {
+  const int repeats = std::max(1, options.repeats);
+  // Long builds show a progress line (stderr terminal only; it touches no result).
+  ProgressLine progress("light map", size_t(repeats) * 3,
+                        options.progress && light_map_needs_progress(p, map.layout));
+  for (int rep = 0; rep < repeats; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
     needed = faces_needed(scene, gbuffer, map.layout, p, &looked_up);
     faces_t.push_back(ms_since(t0));
     t0 = std::chrono::steady_clock::now();
     render_light_map(scene, p, needed, map);
     render_t.push_back(ms_since(t0));
+    progress.advance();
     t0 = std::chrono::steady_clock::now();
     filter_light_map(p, map);
     filter_t.push_back(ms_since(t0));
+    progress.advance();
     map_t.push_back(faces_t.back() + render_t.back() + filter_t.back());
     t0 = std::chrono::steady_clock::now();
     lookup_light_map(scene, gbuffer, p, map, r.mask, options.want_texels ? &r.texels : nullptr);
     lookup_t.push_back(ms_since(t0));
+    progress.advance();
   }
   r.faces_ms = median(faces_t);
   r.render_ms = median(render_t);

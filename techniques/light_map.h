@@ -50,6 +50,11 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
 // chunk, small); faces are counted as if all were needed.
 uint64_t light_map_bytes(const MapParams& p, const Scene& scene);
 
+// True when building this map is expected to take over ~2 s on the machines we measure on
+// (work units: texels, times the blur width for the filters; ~2 ns each), so the pipeline shows
+// a progress line (when RunOptions::progress, i.e. stderr is a terminal).
+bool light_map_needs_progress(const MapParams& p, const FaceLayout& layout);
+
 // The whole pipeline with per-phase timings (medians of options.repeats) and work counts.
 ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer& gbuffer,
                            const RunOptions& options);

@@ -218,5 +218,19 @@ TEST(FilterResponse, TetrahedralTiesGoToTheLowerFace) {
   EXPECT_EQ(r2.face, 2);
 }
 
+// Progress lines appear only for builds expected to take seconds: a 4096 VSM with a 63-texel
+// blur (~100 M texels × 63) yes, the default maps no.
+TEST(LightMapProgress, OnlyLongBuildsShowAProgressLine) {
+  const Scene scene = empty_light_scene();
+  auto needs = [&](const char* spec, FaceLayoutKind layout, MapFilter filter) {
+    const MapParams p = parse_map_params(parse_technique_spec(spec, "t"), layout, filter, "t");
+    return light_map_needs_progress(p, map_layout(p, scene));
+  };
+  EXPECT_TRUE(needs("cvsm:res=4096,blur=63", FaceLayoutKind::Cube, MapFilter::Variance));
+  EXPECT_FALSE(needs("cvsm:res=1024", FaceLayoutKind::Cube, MapFilter::Variance));
+  EXPECT_FALSE(needs("csm:res=4096", FaceLayoutKind::Cube, MapFilter::Depth));
+  EXPECT_FALSE(needs("tesm:res=512,blur=9", FaceLayoutKind::Tetrahedron, MapFilter::Exponential));
+}
+
 }  // namespace
 }  // namespace shadowlab
