@@ -116,6 +116,7 @@ std::vector<FlagDef> common_flags() {
       {"--out", "DIR", "output folder"},
       {"--help", "", "print this help (with the technique registry)"},
       {"--list-techniques", "", "print every technique with its keys and defaults, then exit"},
+      {"--version", "", "print the program, shadowlab's commit and the compiler, then exit"},
   };
 }
 
@@ -234,11 +235,19 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   try {
-    for (int i = 1; i < argc; ++i)
+    for (int i = 1; i < argc; ++i) {
       if (std::string(argv[i]) == "--list-techniques") {
         std::printf("%s", technique_list_text().c_str());
         return 0;
       }
+      if (std::string(argv[i]) == "--version") {
+        // The commit is the one the build was configured from (a later commit needs a cmake
+        // re-run to show).
+        std::printf("%s (shadowlab) commit %s, compiler %s\n", prog.c_str(), SHADOWLAB_COMMIT,
+                    __VERSION__);
+        return 0;
+      }
+    }
     return body(argc, argv);
   } catch (const InputError& e) {
     // One prefix: an error whose source is the program itself ("metric") is not named twice.

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace shadowlab {
 namespace {
 
@@ -20,6 +22,8 @@ std::string number(double v) {
 }  // namespace
 
 std::string metric_report_json(const MetricReport& r) {
+  // nlohmann-json (ordered: the documented key order), full double precision; a non-finite
+  // value is null.
   std::vector<std::pair<const char*, double>> fields = {
       {"c10", r.c10}, {"c50", r.c50},   {"c90", r.c90},     {"dark", r.dark},
       {"lit", r.lit}, {"acne", r.acne}, {"noise", r.noise}, {"detail", r.detail}};
@@ -30,16 +34,10 @@ std::string metric_report_json(const MetricReport& r) {
                                {"ssim", r.ssim},
                                {"rmse", r.rmse},
                                {"psnr", r.psnr}});
-  std::string out = "{";
-  for (size_t i = 0; i < fields.size(); ++i) {
-    if (i) out += ", ";
-    out += '"';
-    out += fields[i].first;
-    out += "\": ";
-    out += number(fields[i].second);
-  }
-  out += "}";
-  return out;
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [key, v] : fields)
+    j[key] = std::isfinite(v) ? nlohmann::ordered_json(v == 0.0 ? 0.0 : v) : nlohmann::ordered_json(nullptr);
+  return j.dump();
 }
 
 std::string metric_report_table(const MetricReport& r) {

@@ -365,6 +365,19 @@ TEST(Mains, RunsThatCannotFitAreRefusedUpFront) {
   EXPECT_EQ(run("render --technique csm --width 64 --height 48 --repeats 1 --max-memory 1 --out " + out).exit_code, 0);
 }
 
+// --version and --list-techniques work on every program, before any other flag is read.
+TEST(Mains, VersionAndTechniqueListEverywhere) {
+  for (const char* prog : {"render", "metric", "resolution_sweep", "raster_bench", "stability"}) {
+    const ProcResult v = run(std::string(prog) + " --version");
+    EXPECT_EQ(v.exit_code, 0) << prog;
+    EXPECT_NE(v.out.find(std::string(prog) + " (shadowlab) commit "), std::string::npos) << v.out;
+    const ProcResult l = run(std::string(prog) + " --list-techniques");
+    EXPECT_EQ(l.exit_code, 0) << prog;
+    for (const char* name : {"rt", "csm", "tsm", "psm", "cvsm", "tvsm", "pvsm", "cesm", "tesm", "pesm"})
+      EXPECT_NE(l.out.find(std::string("  ") + name + "  "), std::string::npos) << prog << " " << name;
+  }
+}
+
 TEST(Mains, AlphaFlagsAreChecked) {
   const std::string out = test::binary_path("alpha_flags_out");
   expect_clear_error("render --technique csm --alpha-cutoff 1.5 --out " + out, "--alpha-cutoff");
