@@ -136,9 +136,32 @@ Imf::Header peek_exr_header(const std::string& path) {
     int32_t size = 0;
     if (!f || !f.read(reinterpret_cast<char*>(&size), 4)) throw InputError(path, "EXR header ends early");
     pos += name.size() + type.size() + 2 + 4;
-    if (size < 0 || uint64_t(size) > file_bytes - std::min(pos, file_bytes) || attribute > 10000)
+    const uint64_t remaining = file_bytes - std::min(pos, file_bytes);
+    if (size < 0 || uint64_t(size) > remaining || attribute > 10000)
       throw InputError(path, "EXR header attribute '" + name.substr(0, 32) + "' declares " +
                                  std::to_string(size) + " bytes, more than the file holds");
+    if (type == "chlist") {
+      // OpenEXR reads a channel list entry by entry (name, 16 bytes) up to an empty name,
+      // whatever its declared size says: walk it the same way.
+      for (;;) {
+        std::string channel;
+        std::getline(f, channel, '\0');
+        if (!f) throw InputError(path, "EXR channel list ends early");
+        pos += channel.size() + 1;
+        if (channel.empty()) break;
+        pos += 16;
+        f.seekg(std::streamoff(pos));
+      }
+      continue;
+    }
+    if (type == "preview") {
+      // Width and height, then width × height RGBA bytes, allocated at their declared size.
+      uint32_t wh[2] = {0, 0};
+      if (!f.read(reinterpret_cast<char*>(wh), 8)) throw InputError(path, "EXR preview ends early");
+      if (uint64_t(wh[0]) * wh[1] * 4 > remaining)
+        throw InputError(path, "EXR preview image declares " + std::to_string(wh[0]) + "x" +
+                                   std::to_string(wh[1]) + " pixels, more than the file holds");
+    }
     pos += uint64_t(size);
     f.seekg(std::streamoff(pos));
   }

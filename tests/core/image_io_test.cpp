@@ -123,6 +123,18 @@ TEST(ImageIo, HostileExrHeadersAreRefusedBeforeAllocating) {
   }
 }
 
+// Also found by fuzz/fuzz_exr (a timeout): a channel list whose declared size overruns the
+// attributes after it. OpenEXR reads a channel list up to its empty name, not by its size, so a
+// walk that trusted the size missed the next attribute, which declared 2 GB.
+TEST(ImageIo, ExrHeaderWalkFollowsOpenExrOnChannelLists) {
+  try {
+    read_exr_rgb(test::source_path("tests/fixtures/exr_chlist_size_mismatch.exr"));
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("declares 2020598114 bytes"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ImageIo, MissingExrNamesTheFile) {
   const std::string path = test::binary_path("core/does_not_exist.exr");
   std::remove(path.c_str());
