@@ -173,16 +173,29 @@ Imf::Header peek_exr_header(const std::string& path) {
 }
 
 // Reads channel `name`, which must exist and have exactly type `type`.
+// Every check that needs only the header, made before OpenEXR opens the file for pixels (which
+// sizes its chunk tables from the declared window): the window starts at (0, 0) and covers the
+// image, its size is within kMaxImageSide, and the file can hold its pixels.
+// bytes_per_value: the smallest the caller accepts (2 when half is allowed).
+void check_exr_header(const std::string& path, int bytes_per_value) {
+  const Imf::Header header = peek_exr_header(path);
+  require_whole_window(path, header);
+  const Imath::Box2i dw = header.dataWindow();
+  const long long w = (long long)dw.max.x - dw.min.x + 1;
+  const long long h = (long long)dw.max.y - dw.min.y + 1;
+  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+    throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
+                               " is outside [1, " + std::to_string(kMaxImageSide) + "]");
+  const Imf::ChannelList& chans = header.channels();
+  const int channels = chans.findChannel("R") && chans.findChannel("G") && chans.findChannel("B") ? 3 : 1;
+  require_plausible_size(path, header, channels, bytes_per_value);
+}
+
 template <class T>
 Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelType type) {
   require_readable(path);
   try {
-    {
-      // Header checks before OpenEXR sizes anything from the declared window.
-      const Imf::Header peek = peek_exr_header(path);
-      require_whole_window(path, peek);
-      require_plausible_size(path, peek, 1, 2);
-    }
+    check_exr_header(path, int(sizeof(T)));
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imf::Channel* ch = header.channels().findChannel(name);
@@ -198,14 +211,9 @@ Image<T> read_exr_channel(const std::string& path, const char* name, Imf::PixelT
                                  pixel_type_name(ch->type) + ", expected " + pixel_type_name(type));
     if (ch->xSampling != 1 || ch->ySampling != 1)
       throw InputError(path, std::string("channel '") + name + "' is subsampled");
-    require_whole_window(path, header);
-    require_plausible_size(path, header, 1, int(sizeof(T)));
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-      throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
-                                 " is outside [1, " + std::to_string(kMaxImageSide) + "]");
     Image<T> img(int(w), int(h), 1);
     Imf::FrameBuffer fb;
     // Slice::Make offsets the base pointer by the data window origin without overflow.
@@ -288,26 +296,16 @@ void write_exr_rgb(const std::string& path, const ImageF& rgb) {
 ImageF read_exr_rgb(const std::string& path) {
   require_readable(path);
   try {
-    {
-      // Header checks before OpenEXR sizes anything from the declared window.
-      const Imf::Header peek = peek_exr_header(path);
-      require_whole_window(path, peek);
-      require_plausible_size(path, peek, 1, 2);
-    }
+    check_exr_header(path, 2);  // half is the smallest pixel type
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imf::ChannelList& chans = header.channels();
     const bool rgb = chans.findChannel("R") && chans.findChannel("G") && chans.findChannel("B");
     if (!rgb && !chans.findChannel("Y"))
       throw InputError(path, "has neither R, G, B nor Y channels");
-    require_whole_window(path, header);
-    require_plausible_size(path, header, rgb ? 3 : 1, 2);  // half is the smallest pixel type
     const Imath::Box2i dw = header.dataWindow();
     const long long w = (long long)dw.max.x - dw.min.x + 1;
     const long long h = (long long)dw.max.y - dw.min.y + 1;
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-      throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
-                                 " is outside [1, " + std::to_string(kMaxImageSide) + "]");
     ImageF img(int(w), int(h), 3);
     Imf::FrameBuffer fb;
     // OpenEXR converts HALF/UINT channels to the FLOAT slices on read.

@@ -56,7 +56,7 @@ void check_bytes(const std::string& path, std::string_view text) {
 // The whitespace-separated tokens of a line (storage reused from line to line).
 struct Tokens {
   std::vector<std::string_view> tok;
-  size_t count = 0;
+  size_t count() const { return tok.size(); }
 };
 
 void tokenize(std::string_view line, Tokens& out) {
@@ -69,7 +69,6 @@ void tokenize(std::string_view line, Tokens& out) {
     while (i < line.size() && !is_space(line[i])) ++i;
     out.tok.push_back(line.substr(b, i - b));
   }
-  out.count = out.tok.size();
 }
 
 // Printable, shortened copy of a token for error messages (garbage files hold binary bytes).
@@ -186,9 +185,9 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
     pos = next;
     ++line_no;
     tokenize(line, t);
-    if (t.count == 0 || t.tok[0][0] == '#') continue;
+    if (t.count() == 0 || t.tok[0][0] == '#') continue;
     const std::string_view key = t.tok[0];
-    const size_t args = t.count - 1;
+    const size_t args = t.count() - 1;
     if (key == "v" || key == "vn" || key == "vt") {
       const bool is_v = key == "v", is_vn = key == "vn";
       const size_t lo = is_v ? 3 : is_vn ? 3 : 1, hi = is_v ? 7 : 3;
@@ -198,7 +197,7 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
                  (lo == hi ? "" : ".." + std::to_string(hi)) + " numbers, got " +
                  std::to_string(args));
       const size_t index = (is_v ? s.positions : is_vn ? s.normals : s.texcoords) + 1;
-      for (size_t i = 1; i < t.count; ++i) {
+      for (size_t i = 1; i < t.count(); ++i) {
         double value = 0.0;
         const Num r = parse_number(t.tok[i], value);
         if (r == Num::kNotNumber)
@@ -215,7 +214,7 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
     } else if (key == "f") {
       if (args < 3)
         fail(path, line_no, "face with " + std::to_string(args) + " corners (needs 3+)");
-      for (size_t i = 1; i < t.count; ++i) check_corner(path, line_no, t.tok[i], s, max_index);
+      for (size_t i = 1; i < t.count(); ++i) check_corner(path, line_no, t.tok[i], s, max_index);
       ++s.faces;
       s.triangles += args - 2;
     } else if (key == "g" || key == "o" || key == "s") {
@@ -252,17 +251,17 @@ void check_mtl_text(const std::string& path, std::string_view text) {
     pos = next;
     ++line_no;
     tokenize(line, t);
-    if (t.count == 0 || t.tok[0][0] == '#') continue;
+    if (t.count() == 0 || t.tok[0][0] == '#') continue;
     const std::string_view key = t.tok[0];
     if (key == "newmtl") {
-      if (t.count < 2) fail(path, line_no, "'newmtl' without a name");
+      if (t.count() < 2) fail(path, line_no, "'newmtl' without a name");
     } else if (key == "Kd" || key == "d" || key == "Tr") {
       size_t first = 1;
-      if (key == "d" && t.count > 1 && t.tok[1] == "-halo") first = 2;
-      if (t.count <= first) fail(path, line_no, quoted(key) + " without a value");
+      if (key == "d" && t.count() > 1 && t.tok[1] == "-halo") first = 2;
+      if (t.count() <= first) fail(path, line_no, quoted(key) + " without a value");
       // Kd may also be "Kd spectral file" or "Kd xyz x y z": only plain numbers are checked.
       if (key == "Kd" && (t.tok[1] == "spectral" || t.tok[1] == "xyz")) continue;
-      for (size_t i = first; i < t.count; ++i) {
+      for (size_t i = first; i < t.count(); ++i) {
         double v = 0.0;
         if (parse_number(t.tok[i], v) != Num::kOk)
           fail(path, line_no, quoted(key) + " has an invalid value '" + printable(t.tok[i]) + "'");

@@ -30,11 +30,10 @@ std::string gb(uint64_t bytes) {
 
 }  // namespace
 
-MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                                   const char* flag) {
+MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs) {
   MemoryEstimate m;
   m.pixels_bytes = uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * kBytesPerPixel;
-  for (const TechniqueSpec& s : specs) m.maps_bytes = std::max(m.maps_bytes, technique_map_bytes(s, scene, flag));
+  for (const TechniqueSpec& s : specs) m.maps_bytes = std::max(m.maps_bytes, technique_map_bytes(s, scene, "--technique"));
   m.scene_bytes = uint64_t(scene.triangle_count()) * kBytesPerTriangle;
   return m;
 }
@@ -53,11 +52,12 @@ uint64_t available_memory_bytes() {
 }
 
 void check_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                      uint64_t max_bytes, const char* flag) {
+                      uint64_t max_bytes) {
   const bool given = max_bytes > 0;
+  const char* flag = given ? "--max-memory" : "--width";
   const uint64_t limit = given ? max_bytes : available_memory_bytes();
   if (limit == 0) return;
-  const MemoryEstimate m = estimate_run_memory(scene, specs, flag);
+  const MemoryEstimate m = estimate_run_memory(scene, specs);
   if (m.total() <= limit) return;
   throw InputError(flag, "this run needs about " + gb(m.total()) + " (image " + gb(m.pixels_bytes) +
                              ", maps " + gb(m.maps_bytes) + ", scene " + gb(m.scene_bytes) +

@@ -19,13 +19,14 @@ struct MemoryEstimate {
   uint64_t total() const { return pixels_bytes + maps_bytes + scene_bytes; }
 };
 
-MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                                   const char* flag);
+// specs must have been validated (their parse errors would name --technique).
+MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs);
 // Bytes available: MemAvailable from /proc/meminfo (0 when unknown).
 uint64_t available_memory_bytes();
-// Throws InputError(flag of the size, "needs about X GB (…), more than the Y GB …") when the
-// estimate exceeds max_bytes (0: the available memory; unknown: no check).
+// Throws InputError("--max-memory" when max_bytes was given, else "--width", "needs about X GB
+// (…), more than the Y GB …") when the estimate exceeds max_bytes (0: the memory available;
+// unknown: no check).
 void check_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                      uint64_t max_bytes, const char* flag);
+                      uint64_t max_bytes);
 
 }  // namespace shadowlab

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     if (args.has("--ambient") && !scene.projector.enabled)
       throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     validate_technique_for_scene(spec, scene, "--technique");
-    check_run_memory(scene, {spec}, max_memory_bytes(args), args.has("--max-memory") ? "--max-memory" : "--width");
+    check_run_memory(scene, {spec}, max_memory_bytes(args));
     const std::string out = args.get("--out", "");
     make_output_dir(out, "--out");
 

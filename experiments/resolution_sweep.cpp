@@ -1,7 +1,6 @@
 // resolution_sweep: Kluczek's Table I experiment — techniques × shadow-map resolutions against
 // a ray-traced reference, every submetric plus shadow time, RP and total; CSV, JSON, masks and
 // a contact sheet of them in --out; with --plot, an SVG of total and fidelity against time.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -9,7 +8,6 @@
 #include "core/image_io.h"
 #include "core/parallel.h"
 #include "experiments/cli.h"
-#include "experiments/memory_check.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
 
@@ -44,6 +42,7 @@ int main(int argc, char** argv) {
     c.cache_dir = a.has("--no-cache") ? "" : default_cache_dir();
     c.out_dir = a.get("--out", "out/resolution_sweep");
     c.progress = stderr_is_terminal();
+    c.max_memory = max_memory_bytes(a);
     const Scene scene = scene_from_args(a);
     make_output_dir(c.out_dir, "--out");
     const std::string plot = a.get("--plot", "");
@@ -53,17 +52,6 @@ int main(int argc, char** argv) {
       throw InputError("--plot", "'" + plot + "': folder does not exist");
     if (!plot.empty() && std::filesystem::is_directory(plot))
       throw InputError("--plot", "'" + plot + "' is a folder; give a file name such as plot.svg");
-    {
-      // The largest resolution of each technique bounds the run's memory.
-      std::vector<TechniqueSpec> largest;
-      const int res = *std::max_element(c.resolutions.begin(), c.resolutions.end());
-      for (const std::string& t : c.techniques) {
-        TechniqueSpec s = parse_technique_spec(t, "--techniques");
-        s.params["res"] = std::to_string(res);
-        largest.push_back(s);
-      }
-      check_run_memory(scene, largest, max_memory_bytes(a), a.has("--max-memory") ? "--max-memory" : "--width");
-    }
     const SweepResult r = run_resolution_sweep(scene, c);
     std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
                 r.scene.c_str(), r.width, r.height, scene.light.radius, c.spp, thread_count(),

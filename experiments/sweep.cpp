@@ -13,6 +13,7 @@
 #include "core/output_file.h"
 #include "core/timer.h"
 #include "experiments/contact_sheet.h"
+#include "experiments/memory_check.h"
 #include "experiments/output_files.h"
 #include "raster/gbuffer_pass.h"
 
@@ -63,6 +64,14 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       probe.params["res"] = std::to_string(r);
       validate_technique_for_scene(probe, scene, "--techniques");
     }
+  }
+  // The memory the run needs, checked once the specs are known to be valid: each technique at
+  // the largest resolution bounds it.
+  {
+    std::vector<TechniqueSpec> largest = specs;
+    const int res = *std::max_element(config.resolutions.begin(), config.resolutions.end());
+    for (TechniqueSpec& s : largest) s.params["res"] = std::to_string(res);
+    check_run_memory(scene, largest, config.max_memory);
   }
   const auto start = std::chrono::steady_clock::now();
   const size_t total = 1 + specs.size() * config.resolutions.size();

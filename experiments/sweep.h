@@ -1,6 +1,7 @@
 #pragma once
 // The resolution sweep behind experiments/resolution_sweep: every technique at every
 // resolution against the ray-traced reference, scored by the shadow metric, with timings.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct SweepConfig {
   std::string out_dir;          // masks (EXR + PNG) per row when non-empty
   bool progress = false;        // progress line with ETA on stderr
   double target_fps = 30.0;     // performance score T_ref = 1/fps
+  uint64_t max_memory = 0;      // refuse runs estimated above this many bytes (0: what is available)
 };
 
 struct SweepRow {

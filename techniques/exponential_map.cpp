@@ -32,13 +32,12 @@ void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
-    filter_esm_log(map.dist.distance[f].data(), face.width, face.height, p.blur, p.esm.c, map.a[f],
-                   map.scratch);
+    filter_esm_log(map.dist.distance[f].data(), face.width, face.height, p.blur, p.esm.c, map.a[f]);
   }
 }
 
-// One occluder term, e^(z − c·t) in float (core/exp_log.h's exp_f, so the batch loop below
-// vectorizes and gives the same bits). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
+// One occluder term, e^(z − c·t) in float (core/exp_log.h's exp_f, whose steps the AVX2 batch
+// below repeats, so both give the same bits). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
 // keeps four terms finite in float (any such tap already makes the sum >= 1 unless its weight
 // is below e^-80, and the result is clamped to 1); below -87 a term counts as e^-87 ≈ 1.6e-38
 // instead of less, a difference far below float's resolution of any sum it enters.

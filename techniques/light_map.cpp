@@ -143,17 +143,24 @@ void count_work(const MapParams& p, const LightMap& map, size_t looked_up, WorkC
 
 }  // namespace
 
-uint64_t light_map_bytes(const MapParams& p, const Scene& scene) {
-  const FaceLayout layout = map_layout(p, scene);
+namespace {
+
+// Texels of every face of a layout, guard bands included.
+uint64_t layout_texels(const FaceLayout& layout) {
   uint64_t texels = 0;
   for (const LightFace& f : layout.faces) texels += f.texel_count();
+  return texels;
+}
+
+}  // namespace
+
+uint64_t light_map_bytes(const MapParams& p, const Scene& scene) {
   const uint64_t planes = map_filter_ops(p.filter).stored_planes(p);
-  return texels * 4 * (1 + planes);
+  return layout_texels(map_layout(p, scene)) * 4 * (1 + planes);
 }
 
 bool light_map_needs_progress(const MapParams& p, const FaceLayout& layout) {
-  uint64_t texels = 0;
-  for (const LightFace& f : layout.faces) texels += f.texel_count();
+  const uint64_t texels = layout_texels(layout);
   const uint64_t units = texels * (p.filter == MapFilter::Depth ? 1 : uint64_t(p.blur));
   return units > 1000000000ull;  // ~2 s at ~2 ns per unit
 }

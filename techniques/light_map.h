@@ -27,7 +27,7 @@ struct LightMap {
   FaceLayout layout;
   FaceDistances dist;
   std::vector<std::vector<float>> a, b, max_depth;
-  FilterScratch scratch;  // reused by every face and every rebuild
+  FilterScratch scratch;  // the max filter's, reused by every face and every rebuild
 };
 
 // The layout of a technique's params (the projector's needs scene.projector).
@@ -45,9 +45,8 @@ void filter_light_map(const MapParams& p, LightMap& map);
 void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
                       const LightMap& map, ImageF& mask, ImageU32* texels);
 
-// Bytes the map of these params holds at once: every face's stored distances (4 B per texel),
-// the filter's planes (4 B each per texel) and the fused filter's double scratch (per face row
-// chunk, small); faces are counted as if all were needed.
+// Bytes the map of these params holds at once: every face's stored distances (4 B per texel)
+// and the filter's planes (4 B each per texel); faces are counted as if all were needed.
 uint64_t light_map_bytes(const MapParams& p, const Scene& scene);
 
 // True when building this map is expected to take over ~2 s on the machines we measure on

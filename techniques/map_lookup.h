@@ -29,8 +29,8 @@ struct NoBatch {
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
 // of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
 // compare in vector form too (footprints inside a face); the scalar loop takes the rest.
-// `batch(consts, receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at once in a
-// loop the compiler vectorizes; it must give `visibility`'s bits lane for lane (its oracle).
+// `batch(consts, receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at
+// once (the filters' AVX2 kernels); it must give `visibility`'s bits lane for lane (its oracle).
 template <class Visibility, class Batch = NoBatch>
 void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
                    ImageF& mask, ImageU32* texels, const Visibility& visibility,

@@ -60,7 +60,7 @@ inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
   vec3 to_p = to_p0;
   float dist = dist0;
   if (p.normal > 0.0f) {
-    to_p = normal_offset_point(pos, n, light.position, p.normal, plane_texel) - light.position;
+    to_p = lookup_point(layout, light, p, pos, n) - light.position;
     dist = glm::length(to_p);
   }
   Receiver r;

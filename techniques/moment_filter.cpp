@@ -210,8 +210,7 @@ void fused_box(int w, int h, int k, int planes, const MakeRow& make_row,
 }  // namespace
 
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
-                           std::vector<float>& mean, std::vector<float>& variance,
-                           FilterScratch&) {
+                           std::vector<float>& mean, std::vector<float>& variance) {
   const size_t n = size_t(w) * size_t(h);
   mean.resize(n);
   variance.resize(n);
@@ -284,8 +283,7 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
   });
 }
 
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
-                    FilterScratch&) {
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out) {
   const size_t n = size_t(w) * size_t(h);
   // The image's smallest distance, a fixed-order reduction over per-row minima.
   std::vector<float> row_min(static_cast<size_t>(h));

@@ -9,10 +9,10 @@
 
 namespace shadowlab {
 
-// Working storage of the filters, kept by the caller across calls so that repeated builds reuse
-// their memory (fresh pages cost ~20 µs each on the VMs we measure on).
+// Working storage of the max filter, kept by the caller across calls so that repeated builds
+// reuse their memory (fresh pages cost ~20 µs each on the VMs we measure on). The moment and
+// ESM filters need none: they work per chunk of rows in small buffers of their own.
 struct FilterScratch {
-  std::vector<double> in[2], tmp[2], out[2];
   std::vector<float> tmp_f;
 };
 
@@ -22,8 +22,7 @@ struct FilterScratch {
 // slope_term adds ¼((∂d/∂x)² + (∂d/∂y)²) per texel to E[d²] (Krave), with each derivative the
 // smaller-magnitude one-sided difference (so a silhouette's jump does not count).
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
-                           std::vector<float>& mean, std::vector<float>& variance,
-                           FilterScratch& scratch);
+                           std::vector<float>& mean, std::vector<float>& variance);
 // The naive form, kept to measure it: (d, d²) summed and stored in float.
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
                          std::vector<float>& m1, std::vector<float>& m2);
@@ -36,7 +35,6 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // (finite in double for c <= 709) and no sum cancels; the naive fp32 exp(c·d) overflows once
 // c·d > 88.7. exp and ln are core/exp_log.h's (within 2 ulp, vectorized, the same bits on any
 // x86-64).
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
-                    FilterScratch& scratch);
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out);
 
 }  // namespace shadowlab

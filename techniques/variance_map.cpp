@@ -39,7 +39,7 @@ void filter(const MapParams& p, LightMap& map) {
       filter_moments_fp32(d, face.width, face.height, p.blur, p.vsm.slope_moment, map.a[f], map.b[f]);
     else
       filter_moments_double(d, face.width, face.height, p.blur, p.vsm.slope_moment, map.a[f],
-                            map.b[f], map.scratch);
+                            map.b[f]);
     if (p.vsm.maxdepth_eps > 0.0)
       filter_max(d, face.width, face.height, p.blur, map.max_depth[f], map.scratch);
   }
@@ -163,8 +163,9 @@ struct VsmBatch {
   PlaneGather planes[3];  // a, b, max_depth
   int n;
   void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
-    alignas(32) float v[3][4][8] = {}, fx[8], fy[8];
+    alignas(32) float v[3][4][8], fx[8], fy[8];
     bilinear8(c, r, planes, n, v, fx, fy);
+    if (n < 3) std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread
 #if defined(__x86_64__)
     if (!k.fp32) {
       vsm_batch_avx2(k, v, fx, fy, r.depth, out);
