@@ -32,8 +32,9 @@ struct LightMap {
 
 // The layout of a technique's params (the projector's needs scene.projector).
 FaceLayout map_layout(const MapParams& p, const Scene& scene);
-// Faces the lookups of the covered, light-facing pixels touch; `looked_up` (optional) receives
-// the number of such pixels.
+// Faces the lookups of the covered, light-facing pixels touch. Without `looked_up` it first
+// walks a sparse sample of the pixels and stops there when that already needs every face; with
+// it, every pixel is walked and `looked_up` receives the number of such pixels.
 std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
                                const MapParams& p, size_t* looked_up = nullptr);
 // Renders the needed faces and stores them (quantized).

@@ -1,9 +1,13 @@
 #include "techniques/moment_filter.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <type_traits>
+#include <vector>
 
 #include "core/exp_log.h"
 #include "core/parallel.h"
@@ -11,8 +15,25 @@
 namespace shadowlab {
 namespace {
 
-// Distance with "nothing seen" as the light's range.
+// The row kernels are compiled for AVX-512, AVX2 and baseline x86-64, picked at load time;
+// element-wise IEEE arithmetic (no FMA: -ffp-contract=off) gives the same bits in every clone.
+#define SL_ROW_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+
+// Distance with "nothing seen" as the light's range: d < 1 ? d : 1.
 inline float finite_dist(float d) { return d < 1.0f ? d : 1.0f; }
+
+// finite_dist and v > 0 ? v : +0 as bit masks: the same values, but GCC if-converts (and so
+// vectorizes) a ?: on doubles or floats only when AVX is on for the whole file, not in the
+// target_clones kernels below; a compare turned into an integer mask is no control flow.
+inline float finite_dist_bits(float d) {
+  const uint32_t keep = uint32_t(0) - uint32_t(d < 1.0f);
+  return std::bit_cast<float>((std::bit_cast<uint32_t>(d) & keep) |
+                              (std::bit_cast<uint32_t>(1.0f) & ~keep));
+}
+inline double positive_part(double v) {
+  const uint64_t keep = uint64_t(0) - uint64_t(v > 0.0);
+  return std::bit_cast<double>(std::bit_cast<uint64_t>(v) & keep);
+}
 
 // Smaller-magnitude one-sided difference of a row/column sample (neighbours clamped).
 inline double min_diff(double prev, double here, double next) {
@@ -106,7 +127,7 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
 
 // out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
 // texels on each side).
-__attribute__((target_clones("avx2", "default"))) void hsum_row(const double* ext, int w, int k,
+SL_ROW_CLONES void hsum_row(const double* ext, int w, int k,
                                                                double* out) {
   for (int x = 0; x < w; ++x) out[x] = 0.0;
   for (int i = 0; i < k; ++i)
@@ -114,7 +135,7 @@ __attribute__((target_clones("avx2", "default"))) void hsum_row(const double* ex
 }
 
 // dst[x] = (rows[0][x] + rows[1][x] + … + rows[k-1][x]) × inv, added in row order.
-__attribute__((target_clones("avx2", "default"))) void vsum_rows(const double* const* rows, int w,
+SL_ROW_CLONES void vsum_rows(const double* const* rows, int w,
                                                                 int k, double inv, double* dst) {
   for (int x = 0; x < w; ++x) dst[x] = rows[0][x];
   for (int j = 1; j < k; ++j)
@@ -123,38 +144,38 @@ __attribute__((target_clones("avx2", "default"))) void vsum_rows(const double* c
 }
 
 // Row r of raw_moments without the slope term: m1 = d, m2 = d² (d = finite_dist).
-__attribute__((target_clones("avx2", "default"))) void moment_row(const float* row, int w,
+SL_ROW_CLONES void moment_row(const float* row, int w,
                                                                  double* m1, double* m2) {
   for (int x = 0; x < w; ++x) {
-    const double d = double(row[x] < 1.0f ? row[x] : 1.0f);
+    const double d = double(finite_dist_bits(row[x]));
     m1[x] = d;
     m2[x] = d * d;
   }
 }
 
 // Mean and variance floats of filtered moment rows (filter_moments_double's storage).
-__attribute__((target_clones("avx2", "default"))) void mean_variance_row(const double* m1,
+SL_ROW_CLONES void mean_variance_row(const double* m1,
                                                                         const double* m2, int w,
                                                                         float* mean, float* var) {
   for (int x = 0; x < w; ++x) {
     mean[x] = float(m1[x]);
     const double v = m2[x] - m1[x] * m1[x];
-    var[x] = float(v > 0.0 ? v : 0.0);
+    var[x] = float(positive_part(v));
   }
 }
 
 // ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist (core/exp_log.h:
 // the vectorized loop gives the scalar bits). Two loops: with the float → double conversion in
 // the same loop the compiler kept it scalar.
-__attribute__((target_clones("avx2", "default"))) void esm_exp_row(const float* row, int w,
+SL_ROW_CLONES void esm_exp_row(const float* row, int w,
                                                                   double c, double d_min,
                                                                   double* out) {
-  for (int x = 0; x < w; ++x) out[x] = double(row[x] < 1.0f ? row[x] : 1.0f);
+  for (int x = 0; x < w; ++x) out[x] = double(finite_dist_bits(row[x]));
   for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
 }
 
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
-__attribute__((target_clones("avx2", "default"))) void esm_log_row(const double* filtered, int w,
+SL_ROW_CLONES void esm_log_row(const double* filtered, int w,
                                                                   double c, double d_min,
                                                                   float* out) {
   for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_d(filtered[x]));
@@ -168,83 +189,228 @@ inline void extend_row(double* ext, int w, int r) {
   }
 }
 
-// Runs the fused box over `planes` planes. make_row(y, ext) fills the extended input rows of
-// input row y (planes × (w + k − 1) doubles, plane after plane); finish_row(y, out) receives
-// the filtered rows (planes × w doubles).
-template <class MakeRow, class FinishRow>
-void fused_box(int w, int h, int k, int planes, const MakeRow& make_row,
-               const FinishRow& finish_row) {
+// Kernels for the common box widths with k a compile-time constant, so each x iteration keeps
+// its k-term sums in registers instead of re-reading and re-storing whole rows (the runtime-k
+// loops above, kept for other widths and the slope term). The additions are the same, in the
+// same order: a sum starts from 0.0 (0.0 + a == a, all terms being >= 0) and adds left to right,
+// rows top to bottom, then × 1/k²; so either path gives the other's bits.
+
+// VSM: h1[x] = Σ_i d, h2[x] = Σ_i d² over ext[x .. x + K − 1] (ext: the clamped finite row).
+template <int K>
+SL_ROW_CLONES void hsum_moments_k(const float* ext, int w, double* h1, double* h2) {
+  for (int x = 0; x < w; ++x) {
+    double s1 = 0.0, s2 = 0.0;
+    for (int i = 0; i < K; ++i) {
+      const double d = double(ext[x + i]);
+      s1 += d;
+      s2 += d * d;
+    }
+    h1[x] = s1;
+    h2[x] = s2;
+  }
+}
+
+// VSM: the K rows of both planes summed, × inv, stored as mean and variance floats.
+template <int K>
+SL_ROW_CLONES void vsm_out_k(const double* const* rows, int w, double inv, float* mean,
+                             float* var) {
+  const double* r1[K];
+  const double* r2[K];
+  for (int j = 0; j < K; ++j) {
+    r1[j] = rows[j];
+    r2[j] = rows[K + j];
+  }
+  for (int x = 0; x < w; ++x) {
+    double a = r1[0][x], b = r2[0][x];
+    for (int j = 1; j < K; ++j) {
+      a += r1[j][x];
+      b += r2[j][x];
+    }
+    a *= inv;
+    b *= inv;
+    mean[x] = float(a);
+    const double v = b - a * a;
+    var[x] = float(positive_part(v));
+  }
+}
+
+// ESM: h[x] = Σ_i ext[x + i] (ext: the row's exponentials, extended).
+template <int K>
+SL_ROW_CLONES void hsum_k(const double* ext, int w, double* h) {
+  for (int x = 0; x < w; ++x) {
+    double s = 0.0;
+    for (int i = 0; i < K; ++i) s += ext[x + i];
+    h[x] = s;
+  }
+}
+
+// ESM: the K rows summed, × inv, then c·d_min + ln(·) as float.
+template <int K>
+SL_ROW_CLONES void esm_out_k(const double* const* rows, int w, double inv, double c,
+                             double d_min, float* out) {
+  const double* r[K];
+  for (int j = 0; j < K; ++j) r[j] = rows[j];
+  for (int x = 0; x < w; ++x) {
+    double a = r[0][x];
+    for (int j = 1; j < K; ++j) a += r[j][x];
+    a *= inv;
+    out[x] = float(c * d_min + log_d(a));
+  }
+}
+
+// min(1, min_x finite_dist(row[x])), the ESM filter's shift, in 8 lanes combined in a fixed
+// order (min is exact, so any order gives the same value).
+SL_ROW_CLONES float row_min_dist(const float* row, int w) {
+  float lanes[8] = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+  int x = 0;
+  for (; x + 8 <= w; x += 8)
+    for (int l = 0; l < 8; ++l) {
+      const float d = finite_dist_bits(row[x + l]);
+      const uint32_t take = uint32_t(0) - uint32_t(d < lanes[l]);
+      lanes[l] = std::bit_cast<float>((std::bit_cast<uint32_t>(d) & take) |
+                                      (std::bit_cast<uint32_t>(lanes[l]) & ~take));
+    }
+  float m = 1.0f;
+  for (int l = 0; l < 8; ++l) m = std::min(m, lanes[l]);
+  for (; x < w; ++x) m = std::min(m, finite_dist(row[x]));
+  return m;
+}
+
+// The clamped finite row of VSM's kernels: ext[i] = finite_dist(row[clamp(i − r)]).
+SL_ROW_CLONES void finite_ext_row(const float* row, int w, int r, float* ext) {
+  for (int x = 0; x < w; ++x) ext[x + r] = finite_dist_bits(row[x]);
+  for (int i = 0; i < r; ++i) {
+    ext[i] = ext[r];
+    ext[w + r + i] = ext[w + r - 1];
+  }
+}
+
+// The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per chunk of
+// output rows: hrow(y, dst, ext) writes input row y's horizontal sums (dst[c]: w doubles of
+// plane c; ext: scratch of planes × (w + k − 1) doubles); out_row(y, window, out) receives,
+// plane after plane, the k rows' pointers of output row y's vertical window (rows clamped to
+// the image) in top-to-bottom order, and scratch of planes × w doubles. Each input row's sums are
+// computed once per chunk (plus k − 1 rows shared with the next chunk) and stay in cache.
+template <class HRow, class OutRow>
+void fused_box(int w, int h, int k, int planes, const HRow& hrow, const OutRow& out_row) {
+  const int r = k / 2;
+  parallel_for_chunks(size_t(h), 32, [&](size_t b, size_t e) {
+    // One uninitialized block: every value is written before it is read.
+    const size_t row_len = size_t(w), ew = size_t(w) + size_t(k) - 1;
+    const size_t n_ring = size_t(k) * size_t(planes) * row_len;
+    const std::unique_ptr<double[]> ring(
+        new double[n_ring + size_t(planes) * (ew + row_len)]);
+    double* const ext = ring.get() + n_ring;
+    double* const out = ext + size_t(planes) * ew;
+    auto slot = [&](int yy, int c) {
+      return ring.get() + (size_t(yy % k) * size_t(planes) + size_t(c)) * row_len;
+    };
+    std::vector<double*> dst(static_cast<size_t>(planes));
+    std::vector<const double*> window(size_t(planes) * size_t(k));
+    int next = std::max(0, int(b) - r);
+    for (size_t y = b; y < e; ++y) {
+      const int last = std::min(h - 1, int(y) + r);
+      for (; next <= last; ++next) {
+        for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
+        hrow(next, dst.data(), ext);
+      }
+      for (int c = 0; c < planes; ++c)
+        for (int j = -r; j <= r; ++j)
+          window[size_t(c) * size_t(k) + size_t(j + r)] = slot(std::clamp(int(y) + j, 0, h - 1), c);
+      out_row(int(y), window.data(), out);
+    }
+  });
+}
+
+// Calls f(std::integral_constant<int, K>) for the widths with compiled kernels; false otherwise.
+template <class F>
+bool with_fixed_width(int k, const F& f) {
+  switch (k) {
+    case 1: f(std::integral_constant<int, 1>{}); return true;
+    case 3: f(std::integral_constant<int, 3>{}); return true;
+    case 5: f(std::integral_constant<int, 5>{}); return true;
+    case 7: f(std::integral_constant<int, 7>{}); return true;
+    case 9: f(std::integral_constant<int, 9>{}); return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+void moments_double(const float* dist, int w, int h, int k, bool slope_term, bool fixed_kernels,
+                    std::vector<float>& mean, std::vector<float>& variance) {
+  const size_t n = size_t(w) * size_t(h);
+  mean.resize(n);
+  variance.resize(n);
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
-  parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
-    const int lo = std::max(0, int(b) - r), hi = std::min(h - 1, int(e) - 1 + r);
-    const size_t rows = size_t(hi - lo + 1);
-    // One uninitialized block (every value is written before it is read): a zero-filled
-    // std::vector here was a sixth of the filter's time.
-    const size_t n_ext = size_t(planes) * ew, n_hsum = rows * size_t(planes) * size_t(w);
-    const std::unique_ptr<double[]> buf(new double[n_ext + n_hsum + size_t(planes) * size_t(w)]);
-    double* const ext = buf.get();
-    double* const hsum = ext + n_ext;
-    double* const out = hsum + n_hsum;
-    for (int y = lo; y <= hi; ++y) {
-      make_row(y, ext);
-      for (int c = 0; c < planes; ++c)
-        hsum_row(ext + size_t(c) * ew, w, k,
-                 hsum + (size_t(y - lo) * size_t(planes) + size_t(c)) * size_t(w));
-    }
-    std::vector<const double*> window(static_cast<size_t>(k));
-    for (size_t y = b; y < e; ++y) {
-      for (int c = 0; c < planes; ++c) {
-        for (int j = -r; j <= r; ++j) {
-          const int yy = std::clamp(int(y) + j, 0, h - 1);
-          window[size_t(j + r)] = hsum + (size_t(yy - lo) * size_t(planes) + size_t(c)) * size_t(w);
-        }
-        vsum_rows(window.data(), w, k, inv, out + size_t(c) * size_t(w));
-      }
-      finish_row(y, out);
-    }
+  auto at = [&](int x, int y) {
+    return double(finite_dist(dist[size_t(std::clamp(y, 0, h - 1)) * size_t(w) +
+                                   size_t(std::clamp(x, 0, w - 1))]));
+  };
+  auto store = [&](int y, double* const out) {
+    mean_variance_row(out, out + w, w, mean.data() + size_t(y) * size_t(w),
+                      variance.data() + size_t(y) * size_t(w));
+  };
+  const bool fixed = fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
+    constexpr int K = decltype(kc)::value;
+    fused_box(
+        w, h, k, 2,
+        [&](int y, double* const* dst, double* ext) {
+          float* const ext_f = reinterpret_cast<float*>(ext);
+          finite_ext_row(dist + size_t(y) * size_t(w), w, r, ext_f);
+          hsum_moments_k<K>(ext_f, w, dst[0], dst[1]);
+        },
+        [&](int y, const double* const* win, double*) {
+          vsm_out_k<K>(win, w, inv, mean.data() + size_t(y) * size_t(w),
+                       variance.data() + size_t(y) * size_t(w));
+        });
   });
+  if (fixed) return;
+  // Other widths and the slope term: the runtime-k row loops.
+  fused_box(
+      w, h, k, 2,
+      [&](int y, double* const* dst, double* ext) {
+        if (!slope_term) {
+          moment_row(dist + size_t(y) * size_t(w), w, ext + r, ext + ew + size_t(r));
+          extend_row(ext, w, r);
+          extend_row(ext + ew, w, r);
+        } else {
+          // raw_moments' values of row y, extended by r clamped texels on each side.
+          for (int x = -r; x < w + r; ++x) {
+            const double d = at(x, y);
+            double m2 = d * d;
+            const int xc = std::clamp(x, 0, w - 1);
+            const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
+            const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
+            m2 += double(0.25 * (dx * dx + dy * dy));
+            ext[size_t(x + r)] = d;
+            ext[ew + size_t(x + r)] = m2;
+          }
+        }
+        hsum_row(ext, w, k, dst[0]);
+        hsum_row(ext + ew, w, k, dst[1]);
+      },
+      [&](int y, const double* const* win, double* out) {
+        vsum_rows(win, w, k, inv, out);
+        vsum_rows(win + k, w, k, inv, out + w);
+        store(y, out);
+      });
 }
 
 }  // namespace
 
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
                            std::vector<float>& mean, std::vector<float>& variance) {
-  const size_t n = size_t(w) * size_t(h);
-  mean.resize(n);
-  variance.resize(n);
-  const int r = k / 2;
-  const size_t ew = size_t(w) + size_t(k) - 1;
-  auto at = [&](int x, int y) {
-    return double(finite_dist(dist[size_t(std::clamp(y, 0, h - 1)) * size_t(w) +
-                                   size_t(std::clamp(x, 0, w - 1))]));
-  };
-  fused_box(
-      w, h, k, 2,
-      [&](int y, double* ext) {
-        // raw_moments' values of row y, extended by r clamped texels on each side.
-        if (!slope_term) {
-          moment_row(dist + size_t(y) * size_t(w), w, ext + r, ext + ew + size_t(r));
-          extend_row(ext, w, r);
-          extend_row(ext + ew, w, r);
-          return;
-        }
-        for (int x = -r; x < w + r; ++x) {
-          const double d = at(x, y);
-          double m2 = d * d;
-          const int xc = std::clamp(x, 0, w - 1);
-          const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
-          const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
-          m2 += double(0.25 * (dx * dx + dy * dy));
-          ext[size_t(x + r)] = d;
-          ext[ew + size_t(x + r)] = m2;
-        }
-      },
-      [&](size_t y, const double* out) {
-        mean_variance_row(out, out + w, w, mean.data() + y * size_t(w),
-                          variance.data() + y * size_t(w));
-      });
+  moments_double(dist, w, h, k, slope_term, true, mean, variance);
+}
+
+void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
+                                  std::vector<float>& mean, std::vector<float>& variance) {
+  moments_double(dist, w, h, k, slope_term, false, mean, variance);
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
@@ -283,30 +449,61 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
   });
 }
 
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out) {
+namespace {
+
+void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernels,
+             std::vector<float>& out) {
   const size_t n = size_t(w) * size_t(h);
   // The image's smallest distance, a fixed-order reduction over per-row minima.
   std::vector<float> row_min(static_cast<size_t>(h));
   parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
     for (size_t y = b; y < e; ++y) {
-      float m = 1.0f;
-      for (int x = 0; x < w; ++x) m = std::min(m, finite_dist(dist[y * size_t(w) + size_t(x)]));
-      row_min[y] = m;
+      row_min[y] = row_min_dist(dist + y * size_t(w), w);
     }
   });
   double d_min = 1.0;
   for (float m : row_min) d_min = std::min(d_min, double(m));
   out.resize(n);
   const int r = k / 2;
+  const double inv = 1.0 / double(k * k);
+  auto exp_row = [&](int y, double* ext) {
+    esm_exp_row(dist + size_t(y) * size_t(w), w, c, d_min, ext + r);
+    extend_row(ext, w, r);
+  };
+  const bool fixed = fixed_kernels && with_fixed_width(k, [&](auto kc) {
+    constexpr int K = decltype(kc)::value;
+    fused_box(
+        w, h, k, 1,
+        [&](int y, double* const* dst, double* ext) {
+          exp_row(y, ext);
+          hsum_k<K>(ext, w, dst[0]);
+        },
+        [&](int y, const double* const* win, double*) {
+          esm_out_k<K>(win, w, inv, c, d_min, out.data() + size_t(y) * size_t(w));
+        });
+  });
+  if (fixed) return;
   fused_box(
       w, h, k, 1,
-      [&](int y, double* ext) {
-        esm_exp_row(dist + size_t(y) * size_t(w), w, c, d_min, ext + r);
-        extend_row(ext, w, r);
+      [&](int y, double* const* dst, double* ext) {
+        exp_row(y, ext);
+        hsum_row(ext, w, k, dst[0]);
       },
-      [&](size_t y, const double* filtered) {
-        esm_log_row(filtered, w, c, d_min, out.data() + y * size_t(w));
+      [&](int y, const double* const* win, double* filtered) {
+        vsum_rows(win, w, k, inv, filtered);
+        esm_log_row(filtered, w, c, d_min, out.data() + size_t(y) * size_t(w));
       });
+}
+
+}  // namespace
+
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out) {
+  esm_log(dist, w, h, k, c, true, out);
+}
+
+void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
+                           std::vector<float>& out) {
+  esm_log(dist, w, h, k, c, false, out);
 }
 
 }  // namespace shadowlab

@@ -37,4 +37,13 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // x86-64).
 void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out);
 
+// The two filters above run kernels with the box width k a compile-time constant for k = 1, 3,
+// 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
+// runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the
+// fixed-width kernels must equal bit for bit (tests/techniques/moment_filter_test.cpp).
+void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
+                                  std::vector<float>& mean, std::vector<float>& variance);
+void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
+                           std::vector<float>& out);
+
 }  // namespace shadowlab
