@@ -3,9 +3,11 @@
 // and bad parameters.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "techniques/light_map.h"
+#include "techniques/map_receiver.h"
 #include "test_scenes.h"
 
 namespace shadowlab {
@@ -31,6 +33,41 @@ TEST(FaceMaps, UnoccludedPlaneIsLit) {
     for (size_t i = 0; i < g.pixel_count(); ++i)
       ASSERT_GE(r.mask.data[i], 0.99f) << spec << " pixel " << i;
   }
+}
+
+// Stage 2 against a brute-force walk: the faces needed are exactly the faces of the covered,
+// light-facing pixels (pcf=1: one tap), whether the pass ends after its sparse sample (tsm,
+// every face needed) or walks every pixel (csm on this view needs 5 of 6), and the looked-up
+// count is the number of such pixels.
+TEST(FaceMaps, FacesNeededAreTheFacesOfTheLookedUpPixels) {
+  const Scene scene = test::small_scene("default", 160, 120);
+  const GBuffer g = render_gbuffer(scene);
+  const struct { const char* spec; FaceLayoutKind layout; MapFilter filter; } cases[] = {
+      {"csm:res=256", FaceLayoutKind::Cube, MapFilter::Depth},
+      {"tsm:res=256", FaceLayoutKind::Tetrahedron, MapFilter::Depth},
+      {"cvsm:res=256", FaceLayoutKind::Cube, MapFilter::Variance}};
+  for (const auto& c : cases) {
+    const MapParams p = parse_map_params(parse_technique_spec(c.spec, "--technique"), c.layout,
+                                         c.filter, "--technique");
+    const FaceLayout layout = map_layout(p, scene);
+    std::vector<bool> expected(layout.faces.size(), false);
+    size_t pixels = 0;
+    for (size_t i = 0; i < g.pixel_count(); ++i) {
+      if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
+      ++pixels;
+      const vec3 to_p = lookup_point(layout, scene.light, p, g.position[i], g.geo_normal[i]) -
+                        scene.light.position;
+      expected[size_t(face_of(layout, to_p))] = true;
+    }
+    size_t looked_up = 0;
+    EXPECT_EQ(faces_needed(scene, g, layout, p), expected) << c.spec;
+    EXPECT_EQ(faces_needed(scene, g, layout, p, &looked_up), expected) << c.spec;
+    EXPECT_EQ(looked_up, pixels) << c.spec;
+  }
+  // The view is chosen so that both paths run: not every cube face is needed.
+  const MapParams cube = default_map_params(FaceLayoutKind::Cube, MapFilter::Depth);
+  const std::vector<bool> cube_faces = faces_needed(scene, g, map_layout(cube, scene), cube);
+  EXPECT_LT(std::count(cube_faces.begin(), cube_faces.end(), true), 6);
 }
 
 // Fine maps agree with one Embree ray per pixel almost everywhere (a 1024 map gives several
