@@ -3,6 +3,7 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -113,11 +114,33 @@ std::vector<FlagDef> common_flags() {
       {"--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)"},
       {"--projector-aspect", "A", "projector slide width / height (default 1)"},
       {"--max-memory", "GB", "refuse runs estimated to need more memory (default: what the machine has available)"},
-      {"--out", "DIR", "output folder"},
+      {"--out", "DIR", "output folder (default out/EXPERIMENT, e.g. out/render)"},
       {"--help", "", "print this help (with the technique registry)"},
       {"--list-techniques", "", "print every technique with its keys and defaults, then exit"},
       {"--version", "", "print the program, shadowlab's commit and the compiler, then exit"},
   };
+}
+
+void mark_unused(std::vector<FlagDef>& defs, const std::vector<std::string>& names,
+                 const std::string& reason) {
+  for (const std::string& n : names) {
+    bool found = false;
+    for (FlagDef& d : defs)
+      if (d.name == n) {
+        d.unused = reason;
+        found = true;
+      }
+    SL_CHECK(found);
+  }
+}
+
+std::vector<std::string> common_scene_flags() {
+  std::vector<std::string> names;
+  for (const FlagDef& d : common_flags())
+    if (d.name != "--threads" && d.name != "--help" && d.name != "--list-techniques" &&
+        d.name != "--version")
+      names.push_back(d.name);
+  return names;
 }
 
 ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
@@ -142,6 +165,7 @@ ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
     for (const FlagDef& d : defs)
       if (d.name == a) def = &d;
     if (!def) throw InputError(a, "unknown flag (see --help)");
+    if (!def->unused.empty()) throw InputError(a, "is not used by this experiment: " + def->unused);
     if (def->value.empty()) {
       if (inline_value) throw InputError(a, "takes no value");
       args.values.insert_or_assign(a, std::string(1, '1'));  // (not = "1": GCC 12 -Wrestrict false positive)
@@ -159,11 +183,24 @@ ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
 
 std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& defs) {
   std::string s = "usage: " + synopsis + "\n";
+  // Unused common flags grouped by reason, after the flags in use.
+  std::vector<std::pair<std::string, std::string>> unused;  // reason, flags
   for (const FlagDef& d : defs) {
+    if (!d.unused.empty()) {
+      auto it = std::find_if(unused.begin(), unused.end(),
+                             [&](const auto& u) { return u.first == d.unused; });
+      if (it == unused.end())
+        unused.emplace_back(d.unused, d.name);
+      else
+        it->second += " " + d.name;
+      continue;
+    }
     std::string left = "  " + d.name + (d.value.empty() ? "" : " " + d.value);
     if (left.size() < 26) left.resize(26, ' ');
     s += left + " " + d.help + "\n";
   }
+  for (const auto& [reason, flags] : unused)
+    s += "common flags not used here (an error if given; " + reason + "):\n  " + flags + "\n";
   s += "techniques (a layout letter c/t/p + a filter sm/vsm/esm; spec NAME:key=value,...):\n";
   s += technique_list_text();
   return s;

@@ -16,6 +16,9 @@ struct FlagDef {
   std::string name;     // "--width"
   std::string value;    // value placeholder ("N"); empty for a switch
   std::string help;
+  // Non-empty: a common flag this experiment does not use, and why. --help lists it as such
+  // and giving it is an InputError with this reason (never silently ignored).
+  std::string unused = {};
 };
 
 struct ParsedArgs {
@@ -36,6 +39,11 @@ std::vector<std::string> split(const std::string& s, char sep);
 // The flags every experiment takes: --scene --width --height --threads --light-radius --out,
 // plus camera/light overrides (--eye --target --fov --light-pos) and --help.
 std::vector<FlagDef> common_flags();
+// Marks the named flags of defs as not used by this experiment, for `reason`.
+void mark_unused(std::vector<FlagDef>& defs, const std::vector<std::string>& names,
+                 const std::string& reason);
+// Every common flag but --threads, --help, --list-techniques and --version.
+std::vector<std::string> common_scene_flags();
 
 // Parses argv against `defs`; `max_positional` positional arguments are allowed.
 ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,

@@ -23,13 +23,21 @@ int main(int argc, char** argv) {
         {"--psm", "SPEC", "technique on the projector scene, without depth (default psm:res=1024,pcf=3,bias=0.002)"},
         {"--spp", "N", "reference samples per pixel on the default scene (default 256)"},
         {"--repeats", "N", "timing repeats, median reported (default 5)"},
-        {"--width", "W", "image width (default 1024)"},
-        {"--height", "H", "image height (default 768)"},
-        {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
         {"--no-cache", "", "do not read or write the reference cache"},
-        {"--out", "DIR", "output folder (default out/depth_precision)"},
-        {"--help", "", "print this help"},
     };
+    for (FlagDef d : common_flags()) {
+      if (d.name == "--width") d.help = "image width (default 1024)";
+      if (d.name == "--height") d.help = "image height (default 768)";
+      if (d.name == "--out") d.help = "output folder (default out/depth_precision)";
+      defs.push_back(d);
+    }
+    std::vector<std::string> unused;
+    for (const std::string& n : common_scene_flags())
+      if (n != "--width" && n != "--height" && n != "--out") unused.push_back(n);
+    // (--max-memory is among them: the experiment's two scenes are small and fixed.)
+    mark_unused(defs, unused,
+                "the experiment runs the default scene and the projector scene, each with its "
+                "own light and camera");
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
       std::printf("%s", usage_text("depth_precision [flags]", defs).c_str());

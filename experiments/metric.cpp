@@ -11,15 +11,17 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    const std::vector<FlagDef> defs = {
+    std::vector<FlagDef> defs = {
         {"--texels", "T.exr", "texel-index image of the test mask (detail score; else detail = 1)"},
         {"--json", "", "print one JSON object instead of the table"},
         {"--shadow-ms", "MS", "shadow time T_shadowed - T_unshadowed in ms (adds the performance score)"},
         {"--fps", "F", "target frame rate for the performance score (default 30)"},
         {"--repeats", "N", "time compute_metric over N runs and print the median on stderr"},
-        {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
-        {"--help", "", "print this help"},
     };
+    for (const FlagDef& d : common_flags())
+      if (d.name != "--repeats") defs.push_back(d);
+    mark_unused(defs, common_scene_flags(),
+                "metric scores two images already rendered, and prints to stdout");
     const ParsedArgs args = parse_args(argc, argv, defs, 2);
     if (args.has("--help")) {
       std::printf("%s", usage_text("metric TEST.exr REF.exr [flags]", defs).c_str());

@@ -16,10 +16,11 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    // Every common flag but --scene: the experiment is the bunny's (the scene of the paper).
-    std::vector<FlagDef> defs;
-    for (const FlagDef& d : common_flags())
-      if (d.name != "--scene") defs.push_back(d);
+    std::vector<FlagDef> defs = common_flags();
+    mark_unused(defs, {"--scene"}, "the experiment is the bunny's, the scene of the paper");
+    mark_unused(defs, {"--slide"}, "it takes --slides, a list");
+    mark_unused(defs, {"--light-radius"}, "a slide projector is a point source");
+    mark_unused(defs, {"--max-memory"}, "its images are the bunny's at the given size; no estimate is made");
     defs.push_back({"--levels", "LIST", "target triangle counts (default 5000,1000,300; the full mesh is always the reference)"});
     defs.push_back({"--slides", "LIST", "slides separated by ';' (default: the paper's four grids)"});
     defs.push_back({"--technique", "SPEC", "visibility technique (default psm:res=2048,pcf=3; rt:hard=1 for ray-traced)"});
@@ -32,7 +33,6 @@ int main(int argc, char** argv) {
       std::printf("%s", usage_text("projector_masking [flags]", defs).c_str());
       return 0;
     }
-    if (args.has("--slide")) throw InputError("--slide", "projector_masking takes --slides (a list)");
     ParsedArgs a = args;
     a.values["--scene"] = "bunny";
     MaskingConfig c;

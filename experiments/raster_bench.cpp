@@ -41,6 +41,7 @@ void print(const char* what, const Stat& s) {
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
     std::vector<FlagDef> defs = common_flags();
+    mark_unused(defs, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
     defs.push_back({"--res", "N", "cube face edge in texels (default 1024)"});
     defs.push_back({"--cull", "MODE", "none, back or front (default none)"});
     defs.push_back({"--repeats", "N", "timed repeats after one warm-up, >= 10 (default 15)"});

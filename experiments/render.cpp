@@ -23,11 +23,10 @@ int main(int argc, char** argv) {
     defs.push_back({"--ambient", "A", "projector scenes: ambient level of the shaded image, [0, 1] (default 0.1)"});
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
-      std::printf("%s", usage_text("render --technique SPEC --out DIR [flags]", defs).c_str());
+      std::printf("%s", usage_text("render --technique SPEC [--out DIR] [flags]", defs).c_str());
       return 0;
     }
     if (!args.has("--technique")) throw InputError("--technique", "is required (see --help)");
-    if (!args.has("--out")) throw InputError("--out", "is required (see --help)");
     const TechniqueSpec spec = parse_technique_spec(args.get("--technique", ""), "--technique");
     validate_technique(spec, "--technique");
     const int repeats = args.get_int("--repeats", 5, 1, 1000);
@@ -38,7 +37,7 @@ int main(int argc, char** argv) {
       throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     validate_technique_for_scene(spec, scene, "--technique");
     check_run_memory(scene, {spec}, max_memory_bytes(args));
-    const std::string out = args.get("--out", "");
+    const std::string out = args.get("--out", "out/render");
     make_output_dir(out, "--out");
 
     GBuffer g;

@@ -10,8 +10,10 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = {{"--threads", "N", "worker threads (default: all cores)"},
-                                 {"--help", "", "print this help"}};
+    std::vector<FlagDef> defs = common_flags();
+    mark_unused(defs, common_scene_flags(),
+                "every case brings its own scene, light, view, size and technique (docs/design.md "
+                "§8), and the table goes to stdout");
     const ParsedArgs args = parse_args(argc, argv, defs);
     if (args.has("--help")) {
       std::printf("%s", usage_text("stability [flags]", defs).c_str());

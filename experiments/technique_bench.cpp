@@ -30,6 +30,7 @@ const char* const kDefaultSpecs =
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
     std::vector<FlagDef> defs = common_flags();
+    mark_unused(defs, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
     defs.push_back({"--techniques", "LIST", std::string("specs without res (default ") + kDefaultSpecs + ")"});
     defs.push_back({"--res", "N", "map resolution of every spec (default 1024)"});
     defs.push_back({"--repeats", "N", "interleaved repeats, medians reported, >= 3 (default 9)"});
