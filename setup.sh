@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(cmake g++ make pkg-config libembree-dev libtbb-dev libglm-dev libopenexr-dev
-          libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev)
+          libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev
+          libcli11-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

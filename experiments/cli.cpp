@@ -3,13 +3,13 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/obj_loader.h"
@@ -33,6 +33,41 @@ long parse_long(const std::string& flag, const std::string& s) {
   return v;
 }
 
+template <class T>
+T in_range(const std::string& flag, const std::string& text, T v, T lo, T hi) {
+  if (v < lo || v > hi)
+    throw InputError(flag, text + " is outside [" + number_text(double(lo)) + ", " +
+                               number_text(double(hi)) + "]");
+  return v;
+}
+
+// Registers `flag` taking one value; `set` receives it. CLI11 collects every occurrence
+// (TakeAll) so that a second one is an error here instead of silently winning.
+void add_valued(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                const std::string& help, std::function<void(const std::string&)> set) {
+  const CLI::callback_t take = [flag, set](const CLI::results_t& values) {
+    if (values.size() > 1) throw InputError(flag, "given twice");
+    set(values.front());
+    return true;
+  };
+  CLI::Option* o = cl.app->add_option(flag, take, help);
+  o->type_name(placeholder)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->expected(1);
+}
+
+// The option's name in a CLI11 message ("--eye: 1 required X,Y,Z missing"), else "".
+std::string flag_in_message(const CLI::App& app, const std::string& message) {
+  std::string best;
+  for (const CLI::Option* o : app.get_options()) {
+    for (const std::string& n : o->get_lnames()) {
+      const std::string f = "--" + n;
+      if (f.size() > best.size() && (message.find(f) != std::string::npos ||
+                                     message.rfind(n + " ", 0) == 0))
+        best = f;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -48,173 +83,190 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-std::string ParsedArgs::get(const std::string& flag, const std::string& fallback) const {
-  const auto it = values.find(flag);
-  return it == values.end() ? fallback : it->second;
+CommandLine make_command_line(const std::string& program, const std::string& synopsis) {
+  CommandLine cl;
+  cl.program = program;
+  cl.app = std::make_shared<CLI::App>(program + " " + synopsis, program);
+  CLI::App& app = *cl.app;
+  app.set_help_flag("--help", "print this help (with the technique registry)");
+  // run_main answers these two before parsing; listed here for --help.
+  const std::string list_help = "print every technique with its keys and defaults, then exit";
+  const std::string version_help = "print the program, shadowlab's commit and the compiler, then exit";
+  app.add_flag("--list-techniques", list_help);
+  app.add_flag("--version", version_help);
+  // Unknown flags and positional arguments are collected and reported by parse_command_line
+  // in shadowlab's one-line form.
+  app.allow_extras(true);
+  app.get_formatter()->column_width(28);
+  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm; spec NAME:key=value,...):\n" +
+             technique_list_text());
+  return cl;
 }
 
-int ParsedArgs::get_int(const std::string& flag, int fallback, int lo, int hi) const {
-  if (!has(flag)) return fallback;
-  const long v = parse_long(flag, get(flag, ""));
-  if (v < lo || v > hi)
-    throw InputError(flag, get(flag, "") + " is outside [" + number_text(lo) + ", " +
-                               number_text(hi) + "]");
-  return int(v);
+void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+             const std::string& help, int& value, int lo, int hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value = int(in_range<long>(flag, s, parse_long(flag, s), lo, hi));
+  });
 }
 
-double ParsedArgs::get_double(const std::string& flag, double fallback, double lo,
-                              double hi) const {
-  if (!has(flag)) return fallback;
-  const double v = parse_double(flag, get(flag, ""));
-  if (v < lo || v > hi)
-    throw InputError(flag, get(flag, "") + " is outside [" + number_text(lo) + ", " +
-                               number_text(hi) + "]");
-  return v;
+void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+             const std::string& help, std::optional<int>& value, int lo, int hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value = int(in_range<long>(flag, s, parse_long(flag, s), lo, hi));
+  });
 }
 
-std::vector<int> ParsedArgs::get_int_list(const std::string& flag, const std::vector<int>& fallback,
-                                          int lo, int hi) const {
-  if (!has(flag)) return fallback;
-  std::vector<int> out;
-  for (const std::string& item : split(get(flag, ""), ',')) {
-    const long v = parse_long(flag, item);
-    if (v < lo || v > hi)
-      throw InputError(flag, item + " is outside [" + number_text(lo) + ", " +
-                                 number_text(hi) + "]");
-    out.push_back(int(v));
-  }
-  if (out.empty()) throw InputError(flag, "expected a comma-separated list of integers");
-  return out;
+void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                const std::string& help, double& value, double lo, double hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value = in_range(flag, s, parse_double(flag, s), lo, hi);
+  });
 }
 
-vec3 ParsedArgs::get_vec3(const std::string& flag, const vec3& fallback) const {
-  if (!has(flag)) return fallback;
-  const std::vector<std::string> parts = split(get(flag, ""), ',');
-  if (parts.size() != 3) throw InputError(flag, "expected x,y,z, got '" + get(flag, "") + "'");
-  return vec3(float(parse_double(flag, parts[0])), float(parse_double(flag, parts[1])),
-              float(parse_double(flag, parts[2])));
+void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                const std::string& help, std::optional<double>& value, double lo, double hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value = in_range(flag, s, parse_double(flag, s), lo, hi);
+  });
 }
 
-std::vector<FlagDef> common_flags() {
-  return {
-      {"--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage) or an .obj file (default: default)"},
-      {"--width", "W", "image width in pixels (default: the scene's camera, 1024)"},
-      {"--height", "H", "image height in pixels (default: the scene's camera, 768)"},
-      {"--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)"},
-      {"--light-radius", "R", "sphere-light radius in metres; 0 = hard point light (default: the scene's)"},
-      {"--light-pos", "X,Y,Z", "light position, metres (default: the scene's)"},
-      {"--eye", "X,Y,Z", "camera position, metres (default: the scene's)"},
-      {"--target", "X,Y,Z", "camera target, metres (default: the scene's)"},
-      {"--fov", "DEG", "vertical field of view in degrees (default: the scene's)"},
-      {"--alpha-cutoff", "C", "alpha-test cutoff of every alpha-textured material, [0, 1] (default: the material's, 0.5)"},
-      {"--no-alpha", "", "ignore alpha textures: every material opaque (to measure the alpha path's cost)"},
-      {"--slide", "SLIDE", "make the light a slide projector casting SLIDE: spot, grid:amp=A,freq=F, or a .png/.exr file"},
-      {"--projector-pos", "X,Y,Z", "projector position, metres (default: the scene's pose, else the light)"},
-      {"--projector-target", "X,Y,Z", "point the projector aims at (default: the scene's pose, else the camera target)"},
-      {"--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)"},
-      {"--projector-aspect", "A", "projector slide width / height (default 1)"},
-      {"--max-memory", "GB", "refuse runs estimated to need more memory (default: what the machine has available)"},
-      {"--out", "DIR", "output folder (default out/EXPERIMENT, e.g. out/render)"},
-      {"--help", "", "print this help (with the technique registry)"},
-      {"--list-techniques", "", "print every technique with its keys and defaults, then exit"},
-      {"--version", "", "print the program, shadowlab's commit and the compiler, then exit"},
-  };
+void add_int_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                  const std::string& help, std::vector<int>& value, int lo, int hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value.clear();
+    for (const std::string& item : split(s, ','))
+      value.push_back(int(in_range<long>(flag, item, parse_long(flag, item), lo, hi)));
+  });
 }
 
-void mark_unused(std::vector<FlagDef>& defs, const std::vector<std::string>& names,
-                 const std::string& reason) {
-  for (const std::string& n : names) {
-    bool found = false;
-    for (FlagDef& d : defs)
-      if (d.name == n) {
-        d.unused = reason;
-        found = true;
-      }
-    SL_CHECK(found);
-  }
+void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
+              std::optional<vec3>& value) {
+  add_valued(cl, flag, "X,Y,Z", help, [flag, &value](const std::string& s) {
+    const std::vector<std::string> parts = split(s, ',');
+    if (parts.size() != 3) throw InputError(flag, "expected x,y,z, got '" + s + "'");
+    value = vec3(float(parse_double(flag, parts[0])), float(parse_double(flag, parts[1])),
+                 float(parse_double(flag, parts[2])));
+  });
+}
+
+void add_text(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+              const std::string& help, std::string& value, bool* given) {
+  add_valued(cl, flag, placeholder, help, [&value, given](const std::string& s) {
+    value = s;
+    if (given) *given = true;
+  });
+}
+
+void add_switch(CommandLine& cl, const std::string& flag, const std::string& help, bool& value) {
+  cl.app
+      ->add_flag_function(
+          flag,
+          [flag, &value](int64_t count) {
+            if (count > 1) throw InputError(flag, "given twice");
+            value = count > 0;
+          },
+          help)
+      ->disable_flag_override();
+}
+
+void add_common_options(CommandLine& cl, CommonOptions& o) {
+  o.out = "out/" + cl.program;
+  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage) or an .obj file (default: default)", o.scene);
+  add_int(cl, "--width", "W", "image width in pixels (default: the scene's camera, 1024)", o.width, 1, kMaxImageSide);
+  add_int(cl, "--height", "H", "image height in pixels (default: the scene's camera, 768)", o.height, 1, kMaxImageSide);
+  add_int(cl, "--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)", o.threads, 1, 1024);
+  add_double(cl, "--light-radius", "R", "sphere-light radius in metres; 0 = hard point light (default: the scene's)", o.light_radius, 0.0, 1e4);
+  add_vec3(cl, "--light-pos", "light position, metres (default: the scene's)", o.light_pos);
+  add_vec3(cl, "--eye", "camera position, metres (default: the scene's)", o.eye);
+  add_vec3(cl, "--target", "camera target, metres (default: the scene's)", o.target);
+  add_double(cl, "--fov", "DEG", "vertical field of view in degrees (default: the scene's)", o.fov, 1.0, 170.0);
+  add_double(cl, "--alpha-cutoff", "C", "alpha-test cutoff of every alpha-textured material, [0, 1] (default: the material's, 0.5)", o.alpha_cutoff, 0.0, 1.0);
+  add_switch(cl, "--no-alpha", "ignore alpha textures: every material opaque (to measure the alpha path's cost)", o.no_alpha);
+  add_text(cl, "--slide", "SLIDE", "make the light a slide projector casting SLIDE: spot, grid:amp=A,freq=F, or a .png/.exr file", o.slide, &o.slide_given);
+  add_vec3(cl, "--projector-pos", "projector position, metres (default: the scene's pose, else the light)", o.projector_pos);
+  add_vec3(cl, "--projector-target", "point the projector aims at (default: the scene's pose, else the camera target)", o.projector_target);
+  add_double(cl, "--projector-fov", "DEG", "projector vertical field of view (default: the scene's pose, else 60)", o.projector_fov, 0.1, 169.0);
+  add_double(cl, "--projector-aspect", "A", "projector slide width / height (default 1)", o.projector_aspect, 0.05, 20.0);
+  add_double(cl, "--max-memory", "GB", "refuse runs estimated to need more memory (default: what the machine has available)", o.max_memory_gb, 1e-6, 1e6);
+  add_text(cl, "--out", "DIR", "output folder (default " + o.out + ")", o.out);
 }
 
 std::vector<std::string> common_scene_flags() {
-  std::vector<std::string> names;
-  for (const FlagDef& d : common_flags())
-    if (d.name != "--threads" && d.name != "--help" && d.name != "--list-techniques" &&
-        d.name != "--version")
-      names.push_back(d.name);
-  return names;
+  return {"--scene", "--width", "--height", "--light-radius", "--light-pos", "--eye", "--target",
+          "--fov", "--alpha-cutoff", "--no-alpha", "--slide", "--projector-pos",
+          "--projector-target", "--projector-fov", "--projector-aspect", "--max-memory", "--out"};
 }
 
-ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
-                      size_t max_positional) {
-  ParsedArgs args;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if (a.rfind("--", 0) != 0 || a == "--") {
-      if (args.positional.size() >= max_positional)
-        throw InputError(a, "unexpected argument (see --help)");
-      args.positional.push_back(a);
-      continue;
-    }
-    std::string value;
-    bool inline_value = false;
-    if (const size_t eq = a.find('='); eq != std::string::npos) {
-      value = a.substr(eq + 1);
-      a = a.substr(0, eq);
-      inline_value = true;
-    }
-    const FlagDef* def = nullptr;
-    for (const FlagDef& d : defs)
-      if (d.name == a) def = &d;
-    if (!def) throw InputError(a, "unknown flag (see --help)");
-    if (!def->unused.empty()) throw InputError(a, "is not used by this experiment: " + def->unused);
-    if (def->value.empty()) {
-      if (inline_value) throw InputError(a, "takes no value");
-      args.values.insert_or_assign(a, std::string(1, '1'));  // (not = "1": GCC 12 -Wrestrict false positive)
-      continue;
-    }
-    if (!inline_value) {
-      if (i + 1 >= argc) throw InputError(a, "expects a value " + def->value);
-      value = argv[++i];
-    }
-    if (args.values.count(a)) throw InputError(a, "given twice");
-    args.values[a] = value;
+void add_repeats(CommandLine& cl, int& repeats, int lo, const std::string& extra) {
+  add_int(cl, "--repeats", "N",
+          "timed runs, the median reported" + (extra.empty() ? "" : "; " + extra) + " (default " +
+              std::to_string(repeats) + (lo > 1 ? ", at least " + std::to_string(lo) : "") + ")",
+          repeats, lo, 100000);
+}
+
+void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const std::string& reason) {
+  const std::string group = "common flags not used here (an error if given; " + reason + ")";
+  for (const std::string& flag : flags) {
+    CLI::Option* old = cl.app->get_option_no_throw(flag);
+    SL_CHECK(old != nullptr);
+    const std::string help = old->get_description();
+    const bool is_flag = old->get_type_size() == 0;
+    cl.app->remove_option(old);
+    const CLI::callback_t reject = [flag, reason](const CLI::results_t&) -> bool {
+      throw InputError(flag, "is not used by this experiment: " + reason);
+    };
+    CLI::Option* o = cl.app->add_option(flag, reject, help);
+    o->group(group)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    if (is_flag) o->expected(0, 1);  // a switch: reported without needing a value
   }
-  return args;
 }
 
-std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& defs) {
-  std::string s = "usage: " + synopsis + "\n";
-  // Unused common flags grouped by reason, after the flags in use.
-  std::vector<std::pair<std::string, std::string>> unused;  // reason, flags
-  for (const FlagDef& d : defs) {
-    if (!d.unused.empty()) {
-      auto it = std::find_if(unused.begin(), unused.end(),
-                             [&](const auto& u) { return u.first == d.unused; });
-      if (it == unused.end())
-        unused.emplace_back(d.unused, d.name);
-      else
-        it->second += " " + d.name;
-      continue;
-    }
-    std::string left = "  " + d.name + (d.value.empty() ? "" : " " + d.value);
-    if (left.size() < 26) left.resize(26, ' ');
-    s += left + " " + d.help + "\n";
+bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional) {
+  CLI::App& app = *cl.app;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", app.help().c_str());
+    return false;
+  } catch (const CLI::ParseError& e) {
+    const std::string message = e.what();
+    const std::string flag = flag_in_message(app, message);
+    if (flag.empty()) throw InputError(cl.program, message);
+    const CLI::Option* o = app.get_option_no_throw(flag);
+    if (message.find("missing") != std::string::npos && o)
+      throw InputError(flag, "expects a value " + o->get_type_name());
+    if (message.find("flag override") != std::string::npos)
+      throw InputError(flag, "takes no value");
+    throw InputError(flag, message);
   }
-  for (const auto& [reason, flags] : unused)
-    s += "common flags not used here (an error if given; " + reason + "):\n  " + flags + "\n";
-  s += "techniques (a layout letter c/t/p + a filter sm/vsm/esm; spec NAME:key=value,...):\n";
-  s += technique_list_text();
-  return s;
+  for (const std::string& a : app.remaining()) {
+    if (a.rfind("--", 0) == 0 && a != "--")
+      throw InputError(a.substr(0, a.find('=')), "unknown flag (see --help)");
+    if (cl.positional.size() >= max_positional) throw InputError(a, "unexpected argument (see --help)");
+    cl.positional.push_back(a);
+  }
+  if (const CLI::Option* t = app.get_option_no_throw("--threads"); t && t->count() > 0) {
+    // Parsed and range-checked by its option already; applied before any work.
+    set_thread_count(std::stoi(t->results().front()));
+  }
+  return true;
 }
 
-void apply_projector_flags(const ParsedArgs& args, Scene& scene) {
-  const char* projector_flags[] = {"--projector-pos", "--projector-target", "--projector-fov",
-                                   "--projector-aspect"};
-  if (!args.has("--slide")) {
-    for (const char* f : projector_flags)
-      if (args.has(f)) throw InputError(f, "needs --slide (the projector's slide)");
+namespace {
+
+// With a slide: makes the scene's light a slide projector (pose from the scene, else from the
+// light aimed at the camera target; the --projector-* options override). Without one, any
+// --projector-* option is an InputError.
+void apply_projector_options(const CommonOptions& o, Scene& scene) {
+  if (!o.slide_given) {
+    if (o.projector_pos) throw InputError("--projector-pos", "needs --slide (the projector's slide)");
+    if (o.projector_target) throw InputError("--projector-target", "needs --slide (the projector's slide)");
+    if (o.projector_fov) throw InputError("--projector-fov", "needs --slide (the projector's slide)");
+    if (o.projector_aspect) throw InputError("--projector-aspect", "needs --slide (the projector's slide)");
     return;
   }
-  if (args.has("--light-radius") && scene.light.radius > 0.0f)
+  if (o.light_radius && scene.light.radius > 0.0f)
     throw InputError("--light-radius", "a slide projector is a point source; drop --light-radius or --slide");
   Projector p = scene.projector;
   vec3 target = scene.camera.target;
@@ -224,42 +276,41 @@ void apply_projector_flags(const ParsedArgs& args, Scene& scene) {
     p.position = scene.light.position;
     p.fov_y_deg = 60.0f;
   }
-  if (args.has("--light-pos") && !args.has("--projector-pos")) p.position = scene.light.position;
-  p.position = args.get_vec3("--projector-pos", p.position);
-  target = args.get_vec3("--projector-target", target);
+  if (o.light_pos && !o.projector_pos) p.position = scene.light.position;
+  p.position = o.projector_pos.value_or(p.position);
+  target = o.projector_target.value_or(target);
   p.direction = target - p.position;
   if (!(glm::length(p.direction) > 0.0f))
-    throw InputError(args.has("--projector-target") ? "--projector-target" : "--projector-pos",
+    throw InputError(o.projector_target ? "--projector-target" : "--projector-pos",
                      "the projector's target coincides with its position");
   // An aim straight up or down gets a horizontal up vector instead of +y.
   if (glm::length(glm::cross(glm::normalize(p.direction), p.up)) < 1e-3f) p.up = vec3(0.0f, 0.0f, -1.0f);
-  p.fov_y_deg = float(args.get_double("--projector-fov", p.fov_y_deg, 0.1, 169.0));
-  p.aspect = float(args.get_double("--projector-aspect", p.aspect, 0.05, 20.0));
-  p.slide = make_slide(args.get("--slide", ""), "--slide");
+  if (o.projector_fov) p.fov_y_deg = float(*o.projector_fov);
+  if (o.projector_aspect) p.aspect = float(*o.projector_aspect);
+  p.slide = make_slide(o.slide, "--slide");
   set_projector(scene, std::move(p), "--slide");
 }
 
-Scene scene_from_args(const ParsedArgs& args) {
-  if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
-  const std::string name = args.get("--scene", "default");
+}  // namespace
+
+Scene scene_from_options(const CommonOptions& o) {
+  const std::string& name = o.scene;
   const bool is_file = name.find('/') != std::string::npos || name.find('.') != std::string::npos;
   Scene scene = is_file ? make_obj_scene(name) : make_builtin_scene(name);
   Camera& cam = scene.camera;
-  cam.width = args.get_int("--width", cam.width, 1, kMaxImageSide);
-  cam.height = args.get_int("--height", cam.height, 1, kMaxImageSide);
-  cam.eye = args.get_vec3("--eye", cam.eye);
-  cam.target = args.get_vec3("--target", cam.target);
-  cam.fov_y_deg = float(args.get_double("--fov", cam.fov_y_deg, 1.0, 170.0));
-  scene.light.position = args.get_vec3("--light-pos", scene.light.position);
-  scene.light.radius = float(args.get_double("--light-radius", scene.light.radius, 0.0, 1e4));
-  if (args.has("--alpha-cutoff") && args.has("--no-alpha"))
-    throw InputError("--alpha-cutoff", "conflicts with --no-alpha");
-  const float cutoff = float(args.get_double("--alpha-cutoff", 0.5, 0.0, 1.0));
+  cam.width = o.width.value_or(cam.width);
+  cam.height = o.height.value_or(cam.height);
+  cam.eye = o.eye.value_or(cam.eye);
+  cam.target = o.target.value_or(cam.target);
+  if (o.fov) cam.fov_y_deg = float(*o.fov);
+  scene.light.position = o.light_pos.value_or(scene.light.position);
+  if (o.light_radius) scene.light.radius = float(*o.light_radius);
+  if (o.alpha_cutoff && o.no_alpha) throw InputError("--alpha-cutoff", "conflicts with --no-alpha");
   for (Material& m : scene.materials) {
-    if (args.has("--no-alpha")) m.alpha_texture = -1;
-    if (args.has("--alpha-cutoff")) m.alpha_cutoff = cutoff;
+    if (o.no_alpha) m.alpha_texture = -1;
+    if (o.alpha_cutoff) m.alpha_cutoff = float(*o.alpha_cutoff);
   }
-  apply_projector_flags(args, scene);
+  apply_projector_options(o, scene);
   validate_scene(scene, is_file ? name : "--scene " + name);
   return scene;
 }
@@ -299,9 +350,8 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   }
 }
 
-uint64_t max_memory_bytes(const ParsedArgs& args) {
-  if (!args.has("--max-memory")) return 0;
-  return uint64_t(args.get_double("--max-memory", 0.0, 1e-6, 1e6) * 1e9);
+uint64_t max_memory_bytes(const CommonOptions& o) {
+  return o.max_memory_gb ? uint64_t(*o.max_memory_gb * 1e9) : 0;
 }
 
 void make_output_dir(const std::string& dir, const std::string& flag) {

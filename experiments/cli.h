@@ -1,70 +1,99 @@
 #pragma once
-// Shared command-line handling of the experiment mains: a strict flag parser (unknown flag or
-// bad value → InputError naming the flag → one line on stderr, exit code 2), the common scene
-// flags, and the main wrapper.
+// The command line of the experiment mains, on CLI11: every option is bound to a typed field
+// (int, double, vec3, list, text, switch) with its range, parsed by shadowlab's strict number
+// rules (core/parse_number.h: decimal only); --help is generated (flags, defaults, the unused
+// common flags with their reason, the technique registry). Any bad input is an InputError
+// naming the flag: one line on stderr and exit code 2 (run_main).
 #include <cstdint>
 #include <functional>
-#include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/scene.h"
 
+namespace CLI {
+class App;
+}
+
 namespace shadowlab {
-
-struct FlagDef {
-  std::string name;     // "--width"
-  std::string value;    // value placeholder ("N"); empty for a switch
-  std::string help;
-  // Non-empty: a common flag this experiment does not use, and why. --help lists it as such
-  // and giving it is an InputError with this reason (never silently ignored).
-  std::string unused = {};
-};
-
-struct ParsedArgs {
-  std::map<std::string, std::string> values;  // flag → value ("1" for switches)
-  std::vector<std::string> positional;
-  bool has(const std::string& flag) const { return values.count(flag) != 0; }
-  std::string get(const std::string& flag, const std::string& fallback) const;
-  int get_int(const std::string& flag, int fallback, int lo, int hi) const;
-  double get_double(const std::string& flag, double fallback, double lo, double hi) const;
-  std::vector<int> get_int_list(const std::string& flag, const std::vector<int>& fallback, int lo,
-                                int hi) const;
-  vec3 get_vec3(const std::string& flag, const vec3& fallback) const;
-};
 
 // Splits s at every `sep`, keeping empty items ("a,,b" and "a,b," hold an empty one).
 std::vector<std::string> split(const std::string& s, char sep);
 
-// The flags every experiment takes: --scene --width --height --threads --light-radius --out,
-// plus camera/light overrides (--eye --target --fov --light-pos) and --help.
-std::vector<FlagDef> common_flags();
-// Marks the named flags of defs as not used by this experiment, for `reason`.
-void mark_unused(std::vector<FlagDef>& defs, const std::vector<std::string>& names,
-                 const std::string& reason);
-// Every common flag but --threads, --help, --list-techniques and --version.
+// An experiment's command line: the CLI11 app and, after parsing, the positional arguments.
+struct CommandLine {
+  std::string program;                  // "render"
+  std::shared_ptr<CLI::App> app;
+  std::vector<std::string> positional;  // filled by parse_command_line
+};
+
+// A command line with --help, --version and --list-techniques; `synopsis` is the usage line
+// after the program name ("--technique SPEC [flags]").
+CommandLine make_command_line(const std::string& program, const std::string& synopsis);
+
+// Typed options. Each parses its value strictly, checks [lo, hi], and rejects a second
+// occurrence ("given twice"); `placeholder` names the value in --help ("N", "X,Y,Z").
+// An optional<> stays empty when the flag is absent.
+void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+             const std::string& help, int& value, int lo, int hi);
+void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+             const std::string& help, std::optional<int>& value, int lo, int hi);
+void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                const std::string& help, double& value, double lo, double hi);
+void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                const std::string& help, std::optional<double>& value, double lo, double hi);
+// Comma-separated integers, each in [lo, hi]; no empty items.
+void add_int_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                  const std::string& help, std::vector<int>& value, int lo, int hi);
+void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
+              std::optional<vec3>& value);
+// Any text (specs, paths, names; the caller validates what it means). `given` (optional) is set
+// when the flag appears, even with an empty value.
+void add_text(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+              const std::string& help, std::string& value, bool* given = nullptr);
+void add_switch(CommandLine& cl, const std::string& flag, const std::string& help, bool& value);
+
+// The flags every experiment takes (README "Experiments"), bound to one struct. Unset optionals
+// keep the scene's own values.
+struct CommonOptions {
+  std::string scene = "default";
+  std::optional<int> width, height, threads;
+  std::optional<double> light_radius, fov, alpha_cutoff;
+  std::optional<vec3> light_pos, eye, target;
+  bool no_alpha = false;
+  std::string slide;  // empty: no slide projector
+  bool slide_given = false;
+  std::optional<vec3> projector_pos, projector_target;
+  std::optional<double> projector_fov, projector_aspect;
+  std::optional<double> max_memory_gb;
+  std::string out;  // out/PROGRAM unless given
+};
+void add_common_options(CommandLine& cl, CommonOptions& o);
+// Every common flag but --threads (the ones that describe a scene, its view, memory and output).
 std::vector<std::string> common_scene_flags();
 
-// Parses argv against `defs`; `max_positional` positional arguments are allowed.
-ParsedArgs parse_args(int argc, char** argv, const std::vector<FlagDef>& defs,
-                      size_t max_positional = 0);
-// Usage text: synopsis line, one line per flag, then the technique registry.
-std::string usage_text(const std::string& synopsis, const std::vector<FlagDef>& defs);
+// The same meaning of --repeats everywhere: timed runs, the median reported.
+void add_repeats(CommandLine& cl, int& repeats, int lo, const std::string& extra = "");
 
-// Applies --threads, then builds the scene named by --scene (a built-in name or an .obj path)
-// with every override applied, validated.
-Scene scene_from_args(const ParsedArgs& args);
+// Marks flags as not used by this experiment: --help lists them under that reason, and giving
+// one is an InputError with it (never silently ignored).
+void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const std::string& reason);
 
-// With --slide: makes the scene's light a slide projector (pose from the scene, else from the
-// light aimed at the camera target; --projector-* flags override). Without it, any
-// --projector-* flag is an InputError.
-void apply_projector_flags(const ParsedArgs& args, Scene& scene);
+// Parses argv (at most max_positional positional arguments). Returns false when --help was
+// printed (the main then returns 0). Applies --threads when present.
+bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional = 0);
+
+// The scene the common options describe: a built-in name or an .obj path, with every override
+// applied and validated (a slide makes the light a projector).
+Scene scene_from_options(const CommonOptions& o);
 
 // The --max-memory limit in bytes (0: not given).
-uint64_t max_memory_bytes(const ParsedArgs& args);
+uint64_t max_memory_bytes(const CommonOptions& o);
 
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
-// other exception → exit code 1. --list-techniques anywhere prints the registry and exits 0.
+// other exception → exit code 1. --list-techniques and --version anywhere print and exit 0.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);
 
 // Creates the folder (and parents) or throws InputError(flag, reason).

@@ -18,35 +18,28 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = {
-        {"--csm", "SPEC", "technique on the default scene, without depth (default csm:res=512,pcf=3)"},
-        {"--psm", "SPEC", "technique on the projector scene, without depth (default psm:res=1024,pcf=3,bias=0.002)"},
-        {"--spp", "N", "reference samples per pixel on the default scene (default 256)"},
-        {"--repeats", "N", "timing repeats, median reported (default 5)"},
-        {"--no-cache", "", "do not read or write the reference cache"},
-    };
-    for (FlagDef d : common_flags()) {
-      if (d.name == "--width") d.help = "image width (default 1024)";
-      if (d.name == "--height") d.help = "image height (default 768)";
-      if (d.name == "--out") d.help = "output folder (default out/depth_precision)";
-      defs.push_back(d);
-    }
+    CommandLine cl = make_command_line("depth_precision", "[flags]");
+    std::string csm_spec = "csm:res=512,pcf=3", psm_spec = "psm:res=1024,pcf=3,bias=0.002";
+    int spp = 256, repeats = 5;
+    bool no_cache = false;
+    add_text(cl, "--csm", "SPEC", "technique on the default scene, without depth (default " + csm_spec + ")", csm_spec);
+    add_text(cl, "--psm", "SPEC", "technique on the projector scene, without depth (default " + psm_spec + ")", psm_spec);
+    add_int(cl, "--spp", "N", "reference samples per pixel on the default scene (default 256)", spp, 1, 1 << 20);
+    add_repeats(cl, repeats, 1);
+    add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
+    CommonOptions common;
+    add_common_options(cl, common);
     std::vector<std::string> unused;
     for (const std::string& n : common_scene_flags())
       if (n != "--width" && n != "--height" && n != "--out") unused.push_back(n);
     // (--max-memory is among them: the experiment's two scenes are small and fixed.)
-    mark_unused(defs, unused,
+    mark_unused(cl, unused,
                 "the experiment runs the default scene and the projector scene, each with its "
                 "own light and camera");
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("depth_precision [flags]", defs).c_str());
-      return 0;
-    }
-    if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
-    const int width = args.get_int("--width", 1024, 1, kMaxImageSide);
-    const int height = args.get_int("--height", 768, 1, kMaxImageSide);
-    const std::string out = args.get("--out", "out/depth_precision");
+    if (!parse_command_line(cl, argc, argv)) return 0;
+    const int width = common.width.value_or(1024);
+    const int height = common.height.value_or(768);
+    const std::string out = common.out;
 
     struct Case {
       const char* title;
@@ -55,9 +48,9 @@ int main(int argc, char** argv) {
       std::string base;
     };
     const Case cases[] = {
-        {"default scene, cube map", "default", "--csm", args.get("--csm", "csm:res=512,pcf=3")},
+        {"default scene, cube map", "default", "--csm", csm_spec},
         {"bunny under the slide projector (spot), projector map", "bunny", "--psm",
-         args.get("--psm", "psm:res=1024,pcf=3,bias=0.002")},
+         psm_spec},
     };
     // Both specs are checked before anything runs.
     for (const Case& cs : cases) {
@@ -83,9 +76,9 @@ int main(int argc, char** argv) {
         c.techniques.push_back(spec_text(s));
       }
       c.resolutions = {res};
-      c.spp = args.get_int("--spp", 256, 1, 1 << 20);
-      c.repeats = args.get_int("--repeats", 5, 1, 1000);
-      c.cache_dir = args.has("--no-cache") ? "" : default_cache_dir();
+      c.spp = spp;
+      c.repeats = repeats;
+      c.cache_dir = no_cache ? "" : default_cache_dir();
       c.out_dir = out + "/" + (std::string(cs.scene) == "default" ? "default" : "projector");
       c.progress = stderr_is_terminal();
       Scene scene = make_builtin_scene(cs.scene);

@@ -16,37 +16,36 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    mark_unused(defs, {"--scene"}, "the experiment is the bunny's, the scene of the paper");
-    mark_unused(defs, {"--slide"}, "it takes --slides, a list");
-    mark_unused(defs, {"--light-radius"}, "a slide projector is a point source");
-    mark_unused(defs, {"--max-memory"}, "its images are the bunny's at the given size; no estimate is made");
-    defs.push_back({"--levels", "LIST", "target triangle counts (default 5000,1000,300; the full mesh is always the reference)"});
-    defs.push_back({"--slides", "LIST", "slides separated by ';' (default: the paper's four grids)"});
-    defs.push_back({"--technique", "SPEC", "visibility technique (default psm:res=2048,pcf=3; rt:hard=1 for ray-traced)"});
-    defs.push_back({"--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)"});
-    defs.push_back({"--repeats", "N", "timing repeats, median reported (default 3)"});
-    defs.push_back({"--no-cache", "", "do not read or write the LOD / reference cache"});
-    defs.push_back({"--sheet-cell", "PX", "contact sheet cells at most PX wide (default 256)"});
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("projector_masking [flags]", defs).c_str());
-      return 0;
-    }
-    ParsedArgs a = args;
-    a.values["--scene"] = "bunny";
+    CommandLine cl = make_command_line("projector_masking", "[flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
+    mark_unused(cl, {"--scene"}, "the experiment is the bunny's, the scene of the paper");
+    mark_unused(cl, {"--slide"}, "it takes --slides, a list");
+    mark_unused(cl, {"--light-radius"}, "a slide projector is a point source");
+    mark_unused(cl, {"--max-memory"}, "its images are the bunny's at the given size; no estimate is made");
     MaskingConfig c;
+    std::vector<int> level_list = {5000, 1000, 300};
+    std::string slides;
+    bool slides_given = false, no_cache = false;
+    double ambient = c.ambient;
+    int sheet_cell = 256;
+    add_int_list(cl, "--levels", "LIST", "target triangle counts (default 5000,1000,300; the full mesh is always the reference)", level_list, 1, 100000000);
+    add_text(cl, "--slides", "LIST", "slides separated by ';' (default: the paper's four grids)", slides, &slides_given);
+    add_text(cl, "--technique", "SPEC", "visibility technique (default " + c.technique + "; rt:hard=1 for ray-traced)", c.technique);
+    add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
+    add_repeats(cl, c.repeats, 1);
+    add_switch(cl, "--no-cache", "do not read or write the LOD / reference cache", no_cache);
+    add_int(cl, "--sheet-cell", "PX", "contact sheet cells at most PX wide (default 256)", sheet_cell, 16, 4096);
+    if (!parse_command_line(cl, argc, argv)) return 0;
     std::vector<size_t> levels = {0};
-    for (int t : a.get_int_list("--levels", {5000, 1000, 300}, 1, 100000000)) levels.push_back(size_t(t));
+    for (int t : level_list) levels.push_back(size_t(t));
     c.levels = levels;
-    if (a.has("--slides")) c.slides = split(a.get("--slides", ""), ';');
-    c.technique = a.get("--technique", c.technique);
-    c.ambient = float(a.get_double("--ambient", c.ambient, 0.0, 1.0));
-    c.repeats = a.get_int("--repeats", c.repeats, 1, 1000);
-    c.cache_dir = a.has("--no-cache") ? "" : default_cache_dir();
-    c.out_dir = a.get("--out", "out/projector_masking");
-    const int sheet_cell = a.get_int("--sheet-cell", 256, 16, 4096);
-    const Scene scene = scene_from_args(a);
+    if (slides_given) c.slides = split(slides, ';');
+    c.ambient = float(ambient);
+    c.cache_dir = no_cache ? "" : default_cache_dir();
+    c.out_dir = common.out;
+    common.scene = "bunny";
+    const Scene scene = scene_from_options(common);
     make_output_dir(c.out_dir, "--out");
     const MaskingResult r = run_lod_masking(scene, c);
     std::printf("projector_masking: bunny %dx%d, visibility %s, ambient %.2f, %d threads\n",

@@ -40,29 +40,25 @@ void print(const char* what, const Stat& s) {
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    mark_unused(defs, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
-    defs.push_back({"--res", "N", "cube face edge in texels (default 1024)"});
-    defs.push_back({"--cull", "MODE", "none, back or front (default none)"});
-    defs.push_back({"--repeats", "N", "timed repeats after one warm-up, >= 10 (default 15)"});
-    defs.push_back({"--only", "JOB", "cube, gbuffer or lookup: time one job (e.g. under callgrind)"});
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("raster_bench [--scene S] [--res N] [--cull MODE] [flags]", defs).c_str());
-      return 0;
-    }
-    const int res = args.get_int("--res", 1024, 1, 8192);
-    const int repeats = args.get_int("--repeats", 15, 10, 100000);
-    const std::string cull_name = args.get("--cull", "none");
+    CommandLine cl = make_command_line("raster_bench", "[--scene S] [--res N] [--cull MODE] [flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
+    mark_unused(cl, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
+    int res = 1024, repeats = 15;
+    std::string cull_name = "none", only;
+    add_int(cl, "--res", "N", "cube face edge in texels (default 1024)", res, 1, 8192);
+    add_text(cl, "--cull", "MODE", "none, back or front (default none)", cull_name);
+    add_repeats(cl, repeats, 10, "after one untimed warm-up; min and max also printed");
+    add_text(cl, "--only", "JOB", "cube, gbuffer or lookup: time one job (e.g. under callgrind)", only);
+    if (!parse_command_line(cl, argc, argv)) return 0;
     CullMode cull = CullMode::None;
     if (cull_name == "back") cull = CullMode::Back;
     else if (cull_name == "front") cull = CullMode::Front;
     else if (cull_name != "none") throw InputError("--cull", "expected none, back or front, got '" + cull_name + "'");
-    const std::string only = args.get("--only", "");
     if (!only.empty() && only != "cube" && only != "gbuffer" && only != "lookup")
       throw InputError("--only", "expected cube, gbuffer or lookup, got '" + only + "'");
     auto want = [&](const char* job) { return only.empty() || only == job; };
-    const Scene scene = scene_from_args(args);
+    const Scene scene = scene_from_options(common);
 
     std::printf("scene %s: %zu triangles, %d threads, cube faces %d², camera %dx%d, cull %s, %d repeats, %s depth kernel\n",
                 scene.name.c_str(), scene.triangle_count(), thread_count(), res, scene.camera.width,

@@ -2,6 +2,7 @@
 // slide projector (--slide) also the shaded image shaded.exr (linear) and shaded.png (sRGB).
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "core/image_io.h"
 #include "core/timer.h"
@@ -16,35 +17,36 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    defs.push_back({"--technique", "SPEC", "technique spec, e.g. csm:res=1024,pcf=3 or rt:spp=256 (required)"});
-    defs.push_back({"--repeats", "N", "timing repeats, median reported (default 5)"});
-    defs.push_back({"--no-cache", "", "do not read or write the reference cache"});
-    defs.push_back({"--ambient", "A", "projector scenes: ambient level of the shaded image, [0, 1] (default 0.1)"});
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("render --technique SPEC [--out DIR] [flags]", defs).c_str());
-      return 0;
-    }
-    if (!args.has("--technique")) throw InputError("--technique", "is required (see --help)");
-    const TechniqueSpec spec = parse_technique_spec(args.get("--technique", ""), "--technique");
-    validate_technique(spec, "--technique");
-    const int repeats = args.get_int("--repeats", 5, 1, 1000);
+    CommandLine cl = make_command_line("render", "--technique SPEC [--out DIR] [flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
+    std::string technique;
+    int repeats = 5;
+    bool no_cache = false;
     ProjectorShading shading;
-    shading.ambient = float(args.get_double("--ambient", shading.ambient, 0.0, 1.0));
-    const Scene scene = scene_from_args(args);
-    if (args.has("--ambient") && !scene.projector.enabled)
+    std::optional<double> ambient;
+    add_text(cl, "--technique", "SPEC", "technique spec, e.g. csm:res=1024,pcf=3 or rt:spp=256 (required)", technique);
+    add_repeats(cl, repeats, 1);
+    add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
+    add_double(cl, "--ambient", "A", "projector scenes: ambient level of the shaded image, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
+    if (!parse_command_line(cl, argc, argv)) return 0;
+    if (technique.empty()) throw InputError("--technique", "is required (see --help)");
+    const TechniqueSpec spec = parse_technique_spec(technique, "--technique");
+    validate_technique(spec, "--technique");
+    if (ambient) shading.ambient = float(*ambient);
+    const Scene scene = scene_from_options(common);
+    if (ambient && !scene.projector.enabled)
       throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     validate_technique_for_scene(spec, scene, "--technique");
-    check_run_memory(scene, {spec}, max_memory_bytes(args));
-    const std::string out = args.get("--out", "out/render");
+    check_run_memory(scene, {spec}, max_memory_bytes(common));
+    const std::string& out = common.out;
     make_output_dir(out, "--out");
 
     GBuffer g;
     const double camera_ms = median_ms(repeats, [&] { render_gbuffer(scene, g); });
     RunOptions opt;
     opt.repeats = repeats;
-    opt.cache_dir = args.has("--no-cache") ? "" : default_cache_dir();
+    opt.cache_dir = no_cache ? "" : default_cache_dir();
     opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
     write_result_files(out, "", r, spec.text, camera_ms);

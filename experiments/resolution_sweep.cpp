@@ -3,6 +3,7 @@
 // a contact sheet of them in --out; with --plot, an SVG of total and fidelity against time.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -15,39 +16,37 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    defs.push_back({"--techniques", "LIST", "comma-separated technique specs without res (default: csm)"});
-    defs.push_back({"--resolutions", "LIST", "shadow-map resolutions (default: 128,256,512,1024)"});
-    defs.push_back({"--spp", "N", "reference samples per pixel (default 256; 1024 = the paper)"});
-    defs.push_back({"--repeats", "N", "timing repeats, median reported (default 5)"});
-    defs.push_back({"--quick", "", "CI size: 320x240, 64 spp, 3 repeats (explicit flags still win)"});
-    defs.push_back({"--no-cache", "", "do not read or write the reference cache"});
-    defs.push_back({"--plot", "FILE.svg", "also write score-vs-time plots with Pareto fronts (default: none)"});
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("resolution_sweep [flags]", defs).c_str());
-      return 0;
-    }
-    const bool quick = args.has("--quick");
-    ParsedArgs a = args;
-    if (quick) {
-      if (!a.has("--width")) a.values["--width"] = "320";
-      if (!a.has("--height")) a.values["--height"] = "240";
-    }
+    CommandLine cl = make_command_line("resolution_sweep", "[flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
     SweepConfig c;
-    c.techniques = split_spec_list(a.get("--techniques", "csm"));
-    c.resolutions = a.get_int_list("--resolutions", c.resolutions, 1, 8192);
-    c.spp = a.get_int("--spp", quick ? 64 : 256, 1, 1 << 20);
-    c.repeats = a.get_int("--repeats", quick ? 3 : 5, 1, 1000);
-    c.cache_dir = a.has("--no-cache") ? "" : default_cache_dir();
-    c.out_dir = a.get("--out", "out/resolution_sweep");
+    std::string techniques = "csm";
+    std::optional<int> spp, repeats_given;
+    bool quick = false, no_cache = false, plot_given = false;
+    std::string plot;
+    add_text(cl, "--techniques", "LIST", "comma-separated technique specs without res (default: csm)", techniques);
+    add_int_list(cl, "--resolutions", "LIST", "shadow-map resolutions (default: 128,256,512,1024)", c.resolutions, 1, 8192);
+    add_int(cl, "--spp", "N", "reference samples per pixel (default 256; 1024 = the paper)", spp, 1, 1 << 20);
+    add_int(cl, "--repeats", "N", "timed runs, the median reported (default 5; 3 with --quick)", repeats_given, 1, 100000);
+    add_switch(cl, "--quick", "CI size: 320x240, 64 spp, 3 repeats (explicit flags still win)", quick);
+    add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
+    add_text(cl, "--plot", "FILE.svg", "also write score-vs-time plots with Pareto fronts (default: none)", plot, &plot_given);
+    if (!parse_command_line(cl, argc, argv)) return 0;
+    if (quick) {
+      if (!common.width) common.width = 320;
+      if (!common.height) common.height = 240;
+    }
+    c.techniques = split_spec_list(techniques);
+    c.spp = spp.value_or(quick ? 64 : 256);
+    c.repeats = repeats_given.value_or(quick ? 3 : 5);
+    c.cache_dir = no_cache ? "" : default_cache_dir();
+    c.out_dir = common.out;
     c.progress = stderr_is_terminal();
-    c.max_memory = max_memory_bytes(a);
-    const Scene scene = scene_from_args(a);
+    c.max_memory = max_memory_bytes(common);
+    const Scene scene = scene_from_options(common);
     make_output_dir(c.out_dir, "--out");
-    const std::string plot = a.get("--plot", "");
     // Checked before the sweep, which can take minutes, and after --out exists (the plot may go there).
-    if (a.has("--plot") && plot.empty()) throw InputError("--plot", "needs a file name");
+    if (plot_given && plot.empty()) throw InputError("--plot", "needs a file name");
     if (!plot.empty() && !std::filesystem::is_directory(std::filesystem::absolute(plot).parent_path()))
       throw InputError("--plot", "'" + plot + "': folder does not exist");
     if (!plot.empty() && std::filesystem::is_directory(plot))

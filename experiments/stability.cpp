@@ -10,16 +10,13 @@ using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    mark_unused(defs, common_scene_flags(),
+    CommandLine cl = make_command_line("stability", "[flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
+    mark_unused(cl, common_scene_flags(),
                 "every case brings its own scene, light, view, size and technique (docs/design.md "
                 "§8), and the table goes to stdout");
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("stability [flags]", defs).c_str());
-      return 0;
-    }
-    if (args.has("--threads")) set_thread_count(args.get_int("--threads", 1, 1, 1024));
+    if (!parse_command_line(cl, argc, argv)) return 0;
     const std::vector<StabilityRow> rows = run_stability_cases();
     std::printf("%s", stability_table(rows).c_str());
     size_t failed = 0;

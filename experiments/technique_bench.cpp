@@ -29,20 +29,18 @@ const char* const kDefaultSpecs =
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    std::vector<FlagDef> defs = common_flags();
-    mark_unused(defs, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
-    defs.push_back({"--techniques", "LIST", std::string("specs without res (default ") + kDefaultSpecs + ")"});
-    defs.push_back({"--res", "N", "map resolution of every spec (default 1024)"});
-    defs.push_back({"--repeats", "N", "interleaved repeats, medians reported, >= 3 (default 9)"});
-    const ParsedArgs args = parse_args(argc, argv, defs);
-    if (args.has("--help")) {
-      std::printf("%s", usage_text("technique_bench [--scene S] [--techniques LIST] [flags]", defs).c_str());
-      return 0;
-    }
-    const int res = args.get_int("--res", 1024, 1, 8192);
-    const int repeats = args.get_int("--repeats", 9, 3, 1000);
+    CommandLine cl = make_command_line("technique_bench", "[--scene S] [--techniques LIST] [flags]");
+    CommonOptions common;
+    add_common_options(cl, common);
+    mark_unused(cl, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
+    std::string techniques = kDefaultSpecs;
+    int res = 1024, repeats = 9;
+    add_text(cl, "--techniques", "LIST", std::string("specs without res (default ") + kDefaultSpecs + ")", techniques);
+    add_int(cl, "--res", "N", "map resolution of every spec (default 1024)", res, 1, 8192);
+    add_repeats(cl, repeats, 3, "interleaved: each round runs every technique once");
+    if (!parse_command_line(cl, argc, argv)) return 0;
     std::vector<TechniqueSpec> specs;
-    for (const std::string& t : split_spec_list(args.get("--techniques", kDefaultSpecs))) {
+    for (const std::string& t : split_spec_list(techniques)) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
       if (s.name == "rt") throw InputError("--techniques", "rt is not a light-map technique");
       s.params["res"] = std::to_string(res);
@@ -50,7 +48,7 @@ int main(int argc, char** argv) {
       validate_technique(s, "--techniques");
       specs.push_back(s);
     }
-    const Scene scene = scene_from_args(args);
+    const Scene scene = scene_from_options(common);
     GBuffer g;
     render_gbuffer(scene, g);
     std::printf("scene %s: %zu triangles, %dx%d, %d threads, res %d, %d interleaved repeats\n",
