@@ -112,6 +112,31 @@ TEST(Mains, UnusedCommonFlagsAreNamedInHelpAndRejected) {
   EXPECT_EQ(run("depth_precision --width 64 --help").exit_code, 0);
 }
 
+// The CLI11 layer's own errors come out in shadowlab's one-line form, naming the flag.
+TEST(Mains, CommandLineErrorsNameTheFlag) {
+  const std::string out = test::binary_path("cli_errors_out");
+  const std::string base = "render --technique csm:res=16 --width 16 --height 12 --repeats 1 --out " + out;
+  expect_clear_error(base + " --width 32", "--width: given twice");
+  expect_clear_error(base + " --no-cache --no-cache", "--no-cache: given twice");
+  expect_clear_error(base + " --no-cache=1", "--no-cache: takes no value");
+  expect_clear_error(base + " --eye", "--eye: expects a value X,Y,Z");
+  expect_clear_error(base + " --bogus=3", "--bogus: unknown flag");
+  expect_clear_error(base + " stray", "stray: unexpected argument");
+  expect_clear_error(base + " --fov 0x10", "--fov: expected a number, got '0x10'");
+  expect_clear_error("technique_bench --repeats 2", "--repeats: 2 is outside [3, 100000]");
+  // A value may start with '-' (a negative coordinate), in both spellings.
+  for (const char* eye : {" --eye -1,2.5,3", " --eye=-1,2.5,3"}) {
+    const ProcResult r = run(base + eye);
+    EXPECT_EQ(r.exit_code, 0) << eye << "\n" << r.err;
+  }
+  // --help lists every flag the program takes, with its placeholder.
+  const ProcResult h = run("render --help");
+  ASSERT_EQ(h.exit_code, 0);
+  for (const char* f : {"--scene S", "--width W", "--eye X,Y,Z", "--technique SPEC", "--repeats N",
+                        "--no-cache", "--ambient A", "--out DIR", "--max-memory GB", "--version"})
+    EXPECT_NE(h.out.find(f), std::string::npos) << f;
+}
+
 TEST(Mains, RenderOutDefaultsToOutRender) {
   const std::string dir = test::binary_path("render_default_out");
   std::filesystem::remove_all(dir);
