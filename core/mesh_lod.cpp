@@ -2,6 +2,8 @@
 
 #include <meshoptimizer.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -36,9 +38,7 @@ uint64_t lod_hash(const Mesh& mesh, size_t target_triangles) {
 }
 
 std::string hex16(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
+  return fmt::format("{:016x}", v);
 }
 
 std::string where_or_default(const Mesh& mesh, const std::string& where) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 namespace shadowlab {
 namespace {
 
@@ -49,9 +51,7 @@ bool parse_long(const std::string& s, long& out) {
 }
 
 std::string number_text(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
+  return fmt::format("{:.10g}", v);
 }
 
 }  // namespace shadowlab

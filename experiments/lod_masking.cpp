@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/bunny_scene.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -104,23 +106,14 @@ MaskingResult run_lod_masking(const Scene& base, const MaskingConfig& c) {
 
 std::string masking_tables(const MaskingResult& r) {
   std::string s;
-  char buf[256];
   auto table = [&](const char* title, auto value) {
     s += std::string(title) + "\n";
-    std::snprintf(buf, sizeof buf, "  %-8s", "level");
-    s += buf;
-    for (const std::string& slide : r.slides) {
-      std::snprintf(buf, sizeof buf, " %22s", slide.c_str());
-      s += buf;
-    }
+    s += fmt::format("  {:<8}", "level");
+    for (const std::string& slide : r.slides) s += fmt::format(" {:>22}", slide);
     s += "\n";
     for (const MaskingLevel& L : r.levels) {
-      std::snprintf(buf, sizeof buf, "  %-8s", level_label(L.target).c_str());
-      s += buf;
-      for (const MaskingCell& cell : L.cells) {
-        std::snprintf(buf, sizeof buf, " %22.4f", value(cell));
-        s += buf;
-      }
+      s += fmt::format("  {:<8}", level_label(L.target));
+      for (const MaskingCell& cell : L.cells) s += fmt::format(" {:22.4f}", value(cell));
       s += "\n";
     }
   };
@@ -133,10 +126,9 @@ std::string masking_tables(const MaskingResult& r) {
         [](const MaskingCell& c) { return 100.0 * c.visible.masked; });
   s += "level costs\n  level    triangles  camera ms  shadow ms  lod\n";
   for (const MaskingLevel& L : r.levels) {
-    std::snprintf(buf, sizeof buf, "  %-8s %9zu %10.2f %10.2f  %s\n", level_label(L.target).c_str(),
-                  L.triangles, L.camera_ms, L.shadow_ms,
-                  L.target == 0 ? "original" : (L.from_cache ? "cached" : "simplified"));
-    s += buf;
+    s += fmt::format("  {:<8} {:9} {:10.2f} {:10.2f}  {}\n", level_label(L.target), L.triangles,
+                     L.camera_ms, L.shadow_ms,
+                     L.target == 0 ? "original" : (L.from_cache ? "cached" : "simplified"));
   }
   return s;
 }

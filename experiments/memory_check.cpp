@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 
 namespace shadowlab {
@@ -20,12 +22,8 @@ constexpr uint64_t kBytesPerPixel = 57 + 8 + 8 + 4 + 40;
 constexpr uint64_t kBytesPerTriangle = 400;
 
 std::string gb(uint64_t bytes) {
-  char b[32];
-  if (bytes >= 1000000000ull)
-    std::snprintf(b, sizeof b, "%.1f GB", double(bytes) / 1e9);
-  else
-    std::snprintf(b, sizeof b, "%.0f MB", double(bytes) / 1e6);
-  return b;
+  return bytes >= 1000000000ull ? fmt::format("{:.1f} GB", double(bytes) / 1e9)
+                                : fmt::format("{:.0f} MB", double(bytes) / 1e6);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -58,15 +60,11 @@ const char* work_csv_header() {
 
 std::string work_csv_values(const ShadowResult& r) {
   const WorkCounts& w = r.work;
-  char b[512];
   if (r.from_cache) return ",,,0,0,0,0,0,0,0,0";  // not timed, no map
-  std::snprintf(b, sizeof b, "%.4f,%.4f,%.4f,%llu,%llu,%llu,%llu,%llu,%.4f,%llu,%llu", r.faces_ms,
-                r.render_ms, r.filter_ms, (unsigned long long)w.triangles_submitted,
-                (unsigned long long)w.triangles_binned, (unsigned long long)w.texels_rendered,
-                (unsigned long long)w.texels_filtered, (unsigned long long)w.pixels_looked_up,
-                w.taps_per_pixel(), (unsigned long long)w.bytes_written,
-                (unsigned long long)w.bytes_read);
-  return b;
+  return fmt::format("{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{},{}", r.faces_ms, r.render_ms,
+                     r.filter_ms, w.triangles_submitted, w.triangles_binned, w.texels_rendered,
+                     w.texels_filtered, w.pixels_looked_up, w.taps_per_pixel(), w.bytes_written,
+                     w.bytes_read);
 }
 
 }  // namespace shadowlab

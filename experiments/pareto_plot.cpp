@@ -1,6 +1,9 @@
 #include "experiments/pareto_plot.h"
 
 #include <algorithm>
+#include <iterator>
+
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -45,20 +48,10 @@ constexpr const char* kPalette[] = {"#1f5fa8", "#d1495b", "#2a9d4a", "#e08a00",
 constexpr int kPaletteSize = int(sizeof kPalette / sizeof kPalette[0]);
 constexpr int kShapeCount = 5;  // circle, square, triangle up, diamond, triangle down
 
-// printf-style append; every number in the SVG goes through a fixed-precision format.
-void add(std::string& s, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
-void add(std::string& s, const char* fmt, ...) {
-  va_list args, again;
-  va_start(args, fmt);
-  va_copy(again, args);
-  const int n = std::vsnprintf(nullptr, 0, fmt, args);  // length first: labels are unbounded
-  va_end(args);
-  SL_CHECK(n >= 0);
-  const size_t old = s.size();
-  s.resize(old + size_t(n) + 1);
-  std::vsnprintf(s.data() + old, size_t(n) + 1, fmt, again);
-  va_end(again);
-  s.resize(old + size_t(n));  // drop the terminator vsnprintf wrote
+// fmt-style append; every number in the SVG goes through a fixed-precision format.
+template <class... Args>
+void add(std::string& s, fmt::format_string<Args...> f, Args&&... args) {
+  fmt::format_to(std::back_inserter(s), f, std::forward<Args>(args)...);
 }
 
 // Marker shape of series k: cycles faster than the palette, so series 8 (colour 0 again) gets
@@ -148,12 +141,8 @@ double nice_step(double span) {
 }
 
 std::string decade_label(int d) {
-  char buf[32];
-  if (d >= 0)
-    std::snprintf(buf, sizeof buf, "%.0f", std::pow(10.0, d));
-  else
-    std::snprintf(buf, sizeof buf, "%.*f", -d, std::pow(10.0, d));
-  return buf;
+  return d >= 0 ? fmt::format("{:.0f}", std::pow(10.0, d))
+                : fmt::format("{:.{}f}", std::pow(10.0, d), -d);
 }
 
 // Marker of a series at (x, y): shape by series index, filled with its colour.
@@ -161,23 +150,23 @@ void marker(std::string& s, const char* cls, int shape, double x, double y, cons
   const double r = kMarkerRadius;
   switch (shape % kShapeCount) {
     case 0:
-      add(s, "<circle class=\"%s\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"%s\"/>\n", cls, x, y,
+      add(s, "<circle class=\"{}\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"{}\"/>\n", cls, x, y,
           r, colour);
       break;
     case 1:
-      add(s, "<rect class=\"%s\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"%s\"/>\n",
+      add(s, "<rect class=\"{}\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\"/>\n",
           cls, x - r * 0.85, y - r * 0.85, r * 1.7, r * 1.7, colour);
       break;
     case 2:
-      add(s, "<path class=\"%s\" d=\"M%.2f %.2fL%.2f %.2fL%.2f %.2fZ\" fill=\"%s\"/>\n", cls, x,
+      add(s, "<path class=\"{}\" d=\"M{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}Z\" fill=\"{}\"/>\n", cls, x,
           y - r * 1.1, x + r, y + r * 0.8, x - r, y + r * 0.8, colour);
       break;
     case 3:
-      add(s, "<path class=\"%s\" d=\"M%.2f %.2fL%.2f %.2fL%.2f %.2fL%.2f %.2fZ\" fill=\"%s\"/>\n",
+      add(s, "<path class=\"{}\" d=\"M{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}Z\" fill=\"{}\"/>\n",
           cls, x, y - r * 1.2, x + r, y, x, y + r * 1.2, x - r, y, colour);
       break;
     default:
-      add(s, "<path class=\"%s\" d=\"M%.2f %.2fL%.2f %.2fL%.2f %.2fZ\" fill=\"%s\"/>\n", cls, x,
+      add(s, "<path class=\"{}\" d=\"M{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}Z\" fill=\"{}\"/>\n", cls, x,
           y + r * 1.1, x + r, y - r * 0.8, x - r, y - r * 0.8, colour);
   }
 }
@@ -185,21 +174,21 @@ void marker(std::string& s, const char* cls, int shape, double x, double y, cons
 // Frame, grid, ticks and axis titles of one panel.
 void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* x_title) {
   const double bottom = kPlotTop + kPlotHeight, right = p.left + kPlotWidth;
-  add(s, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#fafafa\" "
+  add(s, "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"#fafafa\" "
          "stroke=\"#333\" stroke-width=\"1\"/>\n", p.left, kPlotTop, kPlotWidth, kPlotHeight);
   // x: a labelled grid line per decade, short unlabelled ticks at 2..9 × 10^d.
   for (int d = p.decade_lo; d <= p.decade_hi; ++d) {
     const double x = p.px(std::pow(10.0, d));
-    add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", x,
+    add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#ddd\"/>\n", x,
         kPlotTop, x, bottom);
-    add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#333\"/>\n", x, bottom,
+    add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>\n", x, bottom,
         x, bottom + 6.0);
-    add(s, "<text class=\"xtick\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" text-anchor=\"middle\">%s</text>\n",
+    add(s, "<text class=\"xtick\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"11\" text-anchor=\"middle\">{}</text>\n",
         x, bottom + 19.0, decade_label(d).c_str());
     if (d == p.decade_hi) break;
     for (int m = 2; m <= 9; ++m) {
       const double xm = p.px(m * std::pow(10.0, d));
-      add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#333\"/>\n", xm,
+      add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>\n", xm,
           bottom, xm, bottom + 3.0);
     }
   }
@@ -212,18 +201,18 @@ void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* 
     if (v > p.y_hi + 1e-9 * step) break;
     if (std::fabs(v) < 1e-6 * step) v = 0.0;  // no "-0.00"
     const double y = p.py(v);
-    add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#ddd\"/>\n", p.left, y,
+    add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#ddd\"/>\n", p.left, y,
         right, y);
-    add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#333\"/>\n",
+    add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>\n",
         p.left - 6.0, y, p.left, y);
-    add(s, "<text class=\"ytick\" x=\"%.2f\" y=\"%.2f\" font-size=\"11\" text-anchor=\"end\">%.*f</text>\n",
-        p.left - 9.0, y + 4.0, decimals, v);
+    add(s, "<text class=\"ytick\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"11\" text-anchor=\"end\">{:.{}f}</text>\n",
+        p.left - 9.0, y + 4.0, v, decimals);
   }
-  add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\">%s</text>\n",
+  add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\" text-anchor=\"middle\">{}</text>\n",
       p.left + kPlotWidth / 2.0, bottom + 40.0, x_title);
   const double ty_x = p.left - 52.0, ty_y = kPlotTop + kPlotHeight / 2.0;
-  add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\" text-anchor=\"middle\" "
-         "transform=\"rotate(-90 %.2f %.2f)\">%s</text>\n", ty_x, ty_y, ty_x, ty_y, y_title);
+  add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\" text-anchor=\"middle\" "
+         "transform=\"rotate(-90 {:.2f} {:.2f})\">{}</text>\n", ty_x, ty_y, ty_x, ty_y, y_title);
 }
 
 }  // namespace
@@ -251,10 +240,10 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
   const double width = 80.0 + double(panels) * kPanelStep - 50.0;  // 960 px for two panels
 
   std::string s;
-  add(s, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-         "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\">\n", width, kHeight, width, kHeight);
-  add(s, "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#fff\"/>\n", width, kHeight);
-  add(s, "<text x=\"%.2f\" y=\"26\" font-size=\"16\" text-anchor=\"middle\">%s</text>\n",
+  add(s, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0f}\" height=\"{:.0f}\" "
+         "viewBox=\"0 0 {:.0f} {:.0f}\" font-family=\"sans-serif\">\n", width, kHeight, width, kHeight);
+  add(s, "<rect width=\"{:.0f}\" height=\"{:.0f}\" fill=\"#fff\"/>\n", width, kHeight);
+  add(s, "<text x=\"{:.2f}\" y=\"26\" font-size=\"16\" text-anchor=\"middle\">{}</text>\n",
       width / 2.0, escape_xml(title).c_str());
 
   // Legend: one entry per series, then the front's line and ring.
@@ -262,15 +251,15 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
   const double ly = 52.0;
   for (size_t k = 0; k < series.size(); ++k) {
     marker(s, "legend", shape_of(int(k)), lx, ly, kPalette[k % kPaletteSize]);
-    add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">%s</text>\n", lx + 10.0, ly + 4.0,
+    add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">{}</text>\n", lx + 10.0, ly + 4.0,
         escape_xml(series[k]).c_str());
     lx += 34.0 + 7.0 * double(series[k].size());
   }
-  add(s, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#333\" "
+  add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\" "
          "stroke-width=\"1.2\" stroke-dasharray=\"4 3\"/>\n", lx - 6.0, ly, lx + 18.0, ly);
-  add(s, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" stroke=\"#333\"/>\n", lx + 6.0,
+  add(s, "<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n", lx + 6.0,
       ly, kRingRadius);
-  add(s, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
+  add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
 
   for (int panel = 0; panel < panels; ++panel) {
     Panel p;
@@ -305,8 +294,8 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
            "stroke-dasharray=\"4 3\" points=\"";
       for (size_t k = 0; k < order.size(); ++k) {
         const double x = p.px(cost[order[k]]), y = p.py(score[order[k]]);
-        if (k > 0) add(s, " %.2f,%.2f", x, p.py(score[order[k - 1]]));
-        add(s, "%s%.2f,%.2f", k > 0 ? " " : "", x, y);
+        if (k > 0) add(s, " {:.2f},{:.2f}", x, p.py(score[order[k - 1]]));
+        add(s, "{}{:.2f},{:.2f}", k > 0 ? " " : "", x, y);
       }
       s += "\"/>\n";
     }
@@ -317,11 +306,11 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
              kPalette[k % kPaletteSize]);
     }
     for (size_t i : order)
-      add(s, "<circle class=\"ring\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" "
+      add(s, "<circle class=\"ring\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" "
              "stroke=\"#333\" stroke-width=\"1.2\"/>\n", p.px(cost[i]), p.py(score[i]), kRingRadius);
     for (size_t i = 0; i < points.size(); ++i) {
       if (std::isnan(cost[i])) continue;
-      add(s, "<text class=\"lbl\" x=\"%.2f\" y=\"%.2f\" font-size=\"9\" fill=\"#222\">%s</text>\n",
+      add(s, "<text class=\"lbl\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"9\" fill=\"#222\">{}</text>\n",
           p.px(cost[i]) + 7.0, p.py(score[i]) - 6.0, escape_xml(points[i].label).c_str());
     }
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "core/mesh_builders.h"
 #include "core/scene_library.h"
 #include "raster/gbuffer_pass.h"
@@ -81,11 +83,6 @@ StabilityRow measure(const Prepared& p, const std::string& case_name, const std:
   return row;
 }
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 }  // namespace
 
@@ -138,9 +135,9 @@ std::vector<StabilityRow> run_stability_cases() {
     const Prepared def = prepare(sized(make_builtin_scene("default")));
     for (double c : {1.0, 10.0, 80.0, 200.0, 500.0})
       for (const char* t : {"cesm", "tesm"}) {
-        const std::string spec = std::string(t) + ":res=512,c=" + fmt("%g", c);
+        const std::string spec = std::string(t) + ":res=512,c=" + fmt::format("{:g}", c);
         const bool sharp = c >= 80.0;
-        rows.push_back(measure(def, "esm_exponent", "far=20 c=" + fmt("%g", c), spec,
+        rows.push_back(measure(def, "esm_exponent", "far=20 c=" + fmt::format("{:g}", c), spec,
                                sharp ? Check::Mismatch : Check::NonFinite, sharp ? 0.05 : 0.0,
                                sharp ? "finite; mismatch <= 5%; leak <= 0.1"
                                      : "finite (leaks expected at small c)",
@@ -173,7 +170,7 @@ std::vector<StabilityRow> run_stability_cases() {
     struct Range { std::string name; float near, far; };
     for (const Range& rg : {Range{"near=1e-3 far=20", 1e-3f, 20.0f}, Range{"near=0.05 far=1e4", 0.05f, 1e4f},
                             Range{"near=1e-3 far=1e4", 1e-3f, 1e4f},
-                            Range{"tight far=" + fmt("%.2f", 1.01 * farthest), 0.05f, 1.01f * farthest}}) {
+                            Range{"tight far=" + fmt::format("{:.2f}", 1.01 * farthest), 0.05f, 1.01f * farthest}}) {
       Scene s = sized(make_builtin_scene("default"));
       s.light.near = rg.near;
       s.light.far = rg.far;
@@ -283,17 +280,13 @@ std::vector<StabilityRow> run_stability_cases() {
 }
 
 std::string stability_table(const std::vector<StabilityRow>& rows) {
-  std::string s;
-  char line[512];
-  std::snprintf(line, sizeof line, "%-18s %-20s %-30s %6s %8s %8s %8s  %-6s %s\n", "case", "setting",
-                "spec", "nonfin", "mismatch", "lit lost", "leak", "result", "expected");
-  s += line;
-  for (const StabilityRow& r : rows) {
-    std::snprintf(line, sizeof line, "%-18s %-20s %-30s %6zu %8.4f %8.4f %8.4f  %-6s %s\n",
-                  r.case_name.c_str(), r.setting.c_str(), r.spec.c_str(), r.nonfinite, r.mismatch,
-                  r.lit_loss, r.shadow_leak, r.pass ? "ok" : "FAIL", r.expectation.c_str());
-    s += line;
-  }
+  std::string s = fmt::format("{:<18} {:<20} {:<30} {:>6} {:>8} {:>8} {:>8}  {:<6} {}\n", "case",
+                              "setting", "spec", "nonfin", "mismatch", "lit lost", "leak",
+                              "result", "expected");
+  for (const StabilityRow& r : rows)
+    s += fmt::format("{:<18} {:<20} {:<30} {:6} {:8.4f} {:8.4f} {:8.4f}  {:<6} {}\n", r.case_name,
+                     r.setting, r.spec, r.nonfinite, r.mismatch, r.lit_loss, r.shadow_leak,
+                     r.pass ? "ok" : "FAIL", r.expectation);
   return s;
 }
 

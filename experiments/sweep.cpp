@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -135,44 +137,31 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
 
 std::string sweep_table(const SweepResult& r) {
   std::string s;
-  char line[512];
   // The label column fits the longest label (at least 18 wide: "CSM 1024", "RT 1024spp").
   int w = 18;
   for (const SweepRow& row : r.rows) w = std::max(w, int(std::min<size_t>(row.label.size(), 200)));
-  std::snprintf(line, sizeof line,
-                "%-*s %6s %6s %6s %6s %6s %6s %6s %7s %10s %6s %6s %8s %7s %7s\n", w, "method", "c10",
-                "c50", "c90", "dark", "lit", "acne", "noise", "detail", "shadow ms", "RP", "total",
-                "Mtexels", "taps/px", "MB");
-  s += line;
+  s += fmt::format("{:<{}} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>10} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
+                   "method", w, "c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail",
+                   "shadow ms", "RP", "total", "Mtexels", "taps/px", "MB");
   auto add = [&](const SweepRow& row, bool is_ref) {
     const MetricReport& m = row.report;
-    char time[32];
-    if (row.result.from_cache)
-      std::snprintf(time, sizeof time, "cached");
-    else
-      std::snprintf(time, sizeof time, "%.2f", row.result.shadow_ms());
-    char rp[16], total[16];
-    if (is_ref) {
-      std::snprintf(rp, sizeof rp, "-");
-      std::snprintf(total, sizeof total, "%.3f", m.total);
-    } else {
-      std::snprintf(rp, sizeof rp, "%.3f", m.performance);
-      std::snprintf(total, sizeof total, "%.3f", m.total);
-    }
+    const std::string time =
+        row.result.from_cache ? "cached" : fmt::format("{:.2f}", row.result.shadow_ms());
+    const std::string rp = is_ref ? "-" : fmt::format("{:.3f}", m.performance);
+    const std::string total = fmt::format("{:.3f}", m.total);
     // Work counts (README "Work counts"): texels rendered, mean taps per looked-up pixel, map
     // bytes touched (written + read), all per repeat; "-" for the ray tracer.
     const WorkCounts& wk = row.result.work;
-    char tex[16] = "-", taps[16] = "-", mb[16] = "-";
+    std::string tex = "-", taps = "-", mb = "-";
     if (!is_ref) {
-      std::snprintf(tex, sizeof tex, "%.2f", double(wk.texels_rendered) * 1e-6);
-      std::snprintf(taps, sizeof taps, "%.1f", wk.taps_per_pixel());
-      std::snprintf(mb, sizeof mb, "%.1f", double(wk.bytes_touched()) * 1e-6);
+      tex = fmt::format("{:.2f}", double(wk.texels_rendered) * 1e-6);
+      taps = fmt::format("{:.1f}", wk.taps_per_pixel());
+      mb = fmt::format("{:.1f}", double(wk.bytes_touched()) * 1e-6);
     }
-    std::snprintf(line, sizeof line,
-                  "%-*s %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f %7.3f %10s %6s %6s %8s %7s %7s\n",
-                  w, row.label.c_str(), m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
-                  m.detail, time, rp, total, tex, taps, mb);
-    s += line;
+    s += fmt::format(
+        "{:<{}} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:7.3f} {:>10} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
+        row.label, w, m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise, m.detail, time, rp,
+        total, tex, taps, mb);
   };
   add(r.reference, true);
   for (const SweepRow& row : r.rows) add(row, false);
@@ -210,23 +199,22 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
        "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
-    char buf[1024];
     // Empty fields where there is no value: the times of a cached reference, the performance
     // score of a row without timings (the reference).
-    char shadow[32] = "", map[32] = "", lookup[32] = "", perf[32] = "";
+    std::string shadow, map, lookup, perf;
     if (!row.result.from_cache) {
-      std::snprintf(shadow, sizeof shadow, "%.4f", row.result.shadow_ms());
-      std::snprintf(map, sizeof map, "%.4f", row.result.map_ms);
-      std::snprintf(lookup, sizeof lookup, "%.4f", row.result.lookup_ms);
+      shadow = fmt::format("{:.4f}", row.result.shadow_ms());
+      map = fmt::format("{:.4f}", row.result.map_ms);
+      lookup = fmt::format("{:.4f}", row.result.lookup_ms);
     }
-    if (m.has_performance) std::snprintf(perf, sizeof perf, "%.6f", m.performance);
-    std::snprintf(buf, sizeof buf,
-                  "%s,\"%s\",%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%s,%s,"
-                  "%s,%s,%.6f,%d,",
-                  row.label.c_str(), row.spec.c_str(), row.res, m.c10, m.c50, m.c90, m.dark,
-                  m.lit, m.acne, m.noise, m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup,
-                  perf, m.total, row.result.faces_rendered);
-    f << buf << work_csv_values(row.result) << "\n";
+    if (m.has_performance) perf = fmt::format("{:.6f}", m.performance);
+    f << fmt::format(
+             "{},\"{}\",{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},"
+             "{},{},{},{},{:.6f},{},",
+             row.label, row.spec, row.res, m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
+             m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup, perf, m.total,
+             row.result.faces_rendered)
+      << work_csv_values(row.result) << "\n";
   };
   add(r.reference);
   for (const SweepRow& row : r.rows) add(row);

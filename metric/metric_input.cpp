@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 
 namespace shadowlab {
@@ -31,9 +33,7 @@ void check_mask(const ImageF& mask, const std::string& name) {
   for (size_t i = 0; i < mask.data.size(); ++i) {
     const float v = mask.data[i];
     if (v >= 0.0f && v <= 1.0f) continue;
-    char value[64];
-    std::snprintf(value, sizeof value, "%.9g", double(v));
-    throw InputError("metric", name + " has value " + value + " at pixel (" +
+    throw InputError("metric", name + " has value " + fmt::format("{:.9g}", double(v)) + " at pixel (" +
                                    std::to_string(i % size_t(mask.width)) + ", " +
                                    std::to_string(i / size_t(mask.width)) +
                                    "); masks must lie in [0, 1]");

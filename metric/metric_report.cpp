@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 namespace shadowlab {
@@ -14,9 +16,7 @@ namespace {
 std::string number(double v) {
   if (!std::isfinite(v)) return "null";
   if (v == 0.0) v = 0.0;  // print −0 as 0
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6f", v);
-  return buf;
+  return fmt::format("{:.6f}", v);
 }
 
 }  // namespace
@@ -68,9 +68,7 @@ std::string metric_report_table(const MetricReport& r) {
   };
   std::string out;
   for (const Line& l : lines) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%-12s %11s  %s\n", l.name, l.value.c_str(), l.meaning);
-    out += buf;
+    out += fmt::format("{:<12} {:>11}  {}\n", l.name, l.value, l.meaning);
   }
   return out;
 }

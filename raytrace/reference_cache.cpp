@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "core/cache_file.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -21,9 +23,7 @@ constexpr size_t kKeyLength = 16;
 constexpr size_t kHeaderBytes = sizeof(kMagic) + kKeyLength + 4 * sizeof(uint32_t);
 
 std::string hex16(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
+  return fmt::format("{:016x}", v);
 }
 
 bool valid_key(const std::string& key) {

@@ -1,6 +1,8 @@
 // The exponential filter ("esm": cesm, tesm, pesm): the occluder term exp(c·z) box-filtered in
 // log space (techniques/moment_filter.h), looked up bilinearly as Σ w·exp(c·z_occ − c·t).
 #include <algorithm>
+
+#include <fmt/format.h>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -23,9 +25,7 @@ void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapPar
 }
 
 std::string keys_text(const MapParams& p) {
-  char b[64];
-  std::snprintf(b, sizeof b, "blur=%d,c=%g", p.blur, p.esm.c);
-  return b;
+  return fmt::format("blur={},c={:g}", p.blur, p.esm.c);
 }
 
 void filter(const MapParams& p, LightMap& map) {

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 #include "techniques/map_filter.h"
 
@@ -40,10 +42,9 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
 
 std::string map_keys_text(FaceLayoutKind layout, MapFilter filter) {
   const MapParams p = default_map_params(layout, filter);
-  char b[256];
-  std::snprintf(b, sizeof b, "res=%d,bias=%g,slope=%g,normal=%g,depth=f32,", p.res, double(p.bias),
-                double(p.slope), double(p.normal));
-  return b + map_filter_ops(filter).keys_text(p);
+  return fmt::format("res={},bias={:g},slope={:g},normal={:g},depth=f32,", p.res, double(p.bias),
+                     double(p.slope), double(p.normal)) +
+         map_filter_ops(filter).keys_text(p);
 }
 
 void read_blur(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {

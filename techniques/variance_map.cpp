@@ -2,6 +2,8 @@
 // (techniques/moment_filter.h), looked up bilinearly and bounded by Chebyshev's inequality with
 // the variance floor and the light-bleeding reduction; Krave's max-depth test and slope moment.
 #include <algorithm>
+
+#include <fmt/format.h>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -24,10 +26,8 @@ void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapPar
 }
 
 std::string keys_text(const MapParams& p) {
-  char b[200];
-  std::snprintf(b, sizeof b, "blur=%d,min_variance=%g,bleed=%g,maxdepth_eps=%g,slope_moment=0,fp32=0",
-                p.blur, p.vsm.min_variance, p.vsm.bleed, p.vsm.maxdepth_eps);
-  return b;
+  return fmt::format("blur={},min_variance={:g},bleed={:g},maxdepth_eps={:g},slope_moment=0,fp32=0",
+                     p.blur, p.vsm.min_variance, p.vsm.bleed, p.vsm.maxdepth_eps);
 }
 
 void filter(const MapParams& p, LightMap& map) {
