@@ -25,12 +25,18 @@ void write_file_atomically(const std::string& dir, const std::string& path,
   const std::string tmp = path + ".tmp." + std::to_string(uint64_t(::getpid())) + "." +
                           std::to_string(counter.fetch_add(1));
   {
+    // errno read right after the step that failed: the OS's reason (a full disk, a missing
+    // folder, permissions) goes into the message.
+    int err = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) err = errno;
     if (out) out.write(bytes.data(), std::streamsize(bytes.size()));
+    if (!out && err == 0) err = errno;
     out.close();
+    if (!out && err == 0) err = errno;
     if (!out) {
       fs::remove(tmp, ec);
-      throw InputError(tmp, "cannot write the " + what);
+      throw InputError(tmp, "cannot write the " + what + ": " + std::strerror(err != 0 ? err : EIO));
     }
   }
   fs::rename(tmp, path, ec);

@@ -320,12 +320,8 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
 
 void write_pareto_svg(const std::string& path, const std::vector<PlotPoint>& points,
                       const std::string& title) {
-  const std::string text = pareto_svg(points, title);
-  try {
-    write_text_file(path, text);
-  } catch (const InputError&) {
-    throw InputError(path, "cannot write");
-  }
+  // write_text_file's error names the path and the OS's reason.
+  write_text_file(path, pareto_svg(points, title));
 }
 
 }  // namespace shadowlab
