@@ -211,14 +211,22 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
     CLI::Option* old = cl.app->get_option_no_throw(flag);
     SL_CHECK(old != nullptr);
     const std::string help = old->get_description();
-    const bool is_flag = old->get_type_size() == 0;
+    const bool is_flag = old->get_expected_max() == 0;  // a switch takes no value
     cl.app->remove_option(old);
-    const CLI::callback_t reject = [flag, reason](const CLI::results_t&) -> bool {
+    auto fail = [flag, reason] {
       throw InputError(flag, "is not used by this experiment: " + reason);
     };
-    CLI::Option* o = cl.app->add_option(flag, reject, help);
-    o->group(group)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    if (is_flag) o->expected(0, 1);  // a switch: reported without needing a value
+    if (is_flag) {
+      cl.app->add_flag_function(flag, [fail](int64_t) { fail(); }, help)->group(group);
+      continue;
+    }
+    const CLI::callback_t reject = [fail](const CLI::results_t&) -> bool {
+      fail();
+      return false;
+    };
+    cl.app->add_option(flag, reject, help)
+        ->group(group)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   }
 }
 

@@ -88,6 +88,7 @@ TEST(Mains, UnusedCommonFlagsAreNamedInHelpAndRejected) {
   const struct { const char* cmd; const char* flag; } cases[] = {
       {"stability --scene default", "--scene"},
       {"stability --out x", "--out"},
+      {"stability --no-alpha", "--no-alpha"},  // a switch, last on the line
       {"metric a.exr b.exr --eye 1,2,3", "--eye"},
       {"depth_precision --scene default", "--scene"},
       {"depth_precision --light-radius 0", "--light-radius"},
