@@ -152,6 +152,22 @@ std::vector<StabilityRow> run_stability_cases() {
                              "finite (c·Δd is 500× the occluder gap / 1e4: ESM leaks by design)"));
   }
 
+  // 1b. EVSM exponents from 5 to 44 (the largest whose e^(2c) fits float is 44.36; larger ones
+  //     are rejected when parsed), 2 and 4 moments. The stored moments must stay finite up to
+  //     the edge. Measured (2026-11-28): mismatch 0.13-0.33 %, leak 0.025-0.057 in every row,
+  //     c = 5 included (this scene's occluder gaps are large against the warp's spread); bounds
+  //     about 3x that.
+  {
+    const Prepared def = prepare(sized(make_builtin_scene("default")));
+    for (double c : {5.0, 20.0, 40.0, 44.0})
+      for (int moments : {2, 4})
+        for (const char* t : {"cevsm", "tevsm"})
+          rows.push_back(measure(def, "evsm_exponent", fmt::format("c_pos={:g} m={}", c, moments),
+                                 fmt::format("{}:res=512,moments={},c_pos={:g}", t, moments, c),
+                                 Check::Mismatch, 0.01, "finite; mismatch <= 1%; leak <= 0.15",
+                                 0.15));
+  }
+
   // 2. VSM over light ranges: near/far from 1e-3 / 20 to 1e-3 / 1e4, and a tight far (1.01 ×
   //    the farthest receiver), where stored depths approach 1 and fp32 E[d²] − E[d]² cancels.
   //    The default (double filter, centred storage) must keep acne (lit pixels lost) under 1%

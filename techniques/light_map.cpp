@@ -118,6 +118,8 @@ void filter_light_map(const MapParams& p, LightMap& map) {
   map.a.resize(nf);
   map.b.resize(nf);
   map.max_depth.resize(nf);
+  map.c.resize(nf);
+  map.d.resize(nf);
   map_filter_ops(p.filter).filter(p, map);
 }
 
@@ -128,7 +130,8 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
 
 const std::vector<const MapFilterOps*>& map_filters() {
   static const std::vector<const MapFilterOps*> rows = {&kDepthCompare, &kVarianceMap,
-                                                        &kExponentialMap};
+                                                        &kExponentialMap,
+                                                        &kExponentialVarianceMap};
   return rows;
 }
 

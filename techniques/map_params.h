@@ -9,6 +9,7 @@
 // Shared keys: res (comparable cube edge N; psm: the map's height), bias (m), slope, normal,
 // depth (stored precision, techniques/depth_quantize.h). Depth compare: pcf, seams. Filters:
 // blur. VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment, fp32. ESM: c.
+// EVSM (evsm: cevsm, tevsm, pevsm): moments, c_pos, c_neg, min_variance, bleed.
 #include <string>
 
 #include "techniques/depth_quantize.h"
@@ -17,7 +18,7 @@
 
 namespace shadowlab {
 
-enum class MapFilter { Depth, Variance, Exponential };
+enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance };
 
 // How taps near a face's edge read their texels.
 //   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
@@ -44,6 +45,17 @@ struct EsmKeys {
                      // allows any c <= 700 (README: why 200)
 };
 
+// Keys of the exponential variance filter (evsm). The exponents warp the normalised distance
+// d' = 2d − 1 in [−1, 1]; e^(2c) must stay below FLT_MAX (c <= 44.36) in the stored moments.
+struct EvsmKeys {
+  int moments = 2;             // 2: the positive warp e^(c_pos·d'); 4: also −e^(−c_neg·d')
+  double c_pos = 40.0;         // positive exponent (the fp32 default of the literature)
+  double c_neg = 5.0;          // negative exponent
+  double min_variance = 1e-6;  // variance floor of the distance, m², carried into each warp
+                               // by its slope at the receiver
+  double bleed = 0.0;          // light-bleeding reduction, as for vsm
+};
+
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
   MapFilter filter = MapFilter::Depth;
@@ -61,6 +73,7 @@ struct MapParams {
   int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)
   VsmKeys vsm;            // the variance filter's own keys (techniques/variance_map.cpp)
   EsmKeys esm;            // the exponential filter's own keys (techniques/exponential_map.cpp)
+  EvsmKeys evsm;          // the exponential variance filter's (techniques/exponential_variance_map.cpp)
 };
 
 // The defaults of a layout × filter before any key is read (bias and slope are 0 for the

@@ -174,6 +174,17 @@ SL_ROW_CLONES void esm_exp_row(const float* row, int w,
   for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
 }
 
+// EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v².
+SL_ROW_CLONES void warped_row(const float* row, int w, double c, double sign, double* m1,
+                              double* m2) {
+  for (int x = 0; x < w; ++x) m1[x] = double(finite_dist_bits(row[x]));
+  for (int x = 0; x < w; ++x) {
+    const double v = sign * exp_d(sign * c * (2.0 * m1[x] - 1.0));
+    m1[x] = v;
+    m2[x] = v * v;
+  }
+}
+
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
 SL_ROW_CLONES void esm_log_row(const double* filtered, int w,
                                                                   double c, double d_min,
@@ -411,6 +422,31 @@ void filter_moments_double(const float* dist, int w, int h, int k, bool slope_te
 void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
                                   std::vector<float>& mean, std::vector<float>& variance) {
   moments_double(dist, w, h, k, slope_term, false, mean, variance);
+}
+
+void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
+                           std::vector<float>& mean, std::vector<float>& variance) {
+  const size_t n = size_t(w) * size_t(h);
+  mean.resize(n);
+  variance.resize(n);
+  const int r = k / 2;
+  const size_t ew = size_t(w) + size_t(k) - 1;
+  const double inv = 1.0 / double(k * k);
+  fused_box(
+      w, h, k, 2,
+      [&](int y, double* const* dst, double* ext) {
+        warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
+        extend_row(ext, w, r);
+        extend_row(ext + ew, w, r);
+        hsum_row(ext, w, k, dst[0]);
+        hsum_row(ext + ew, w, k, dst[1]);
+      },
+      [&](int y, const double* const* win, double* out) {
+        vsum_rows(win, w, k, inv, out);
+        vsum_rows(win + k, w, k, inv, out + w);
+        mean_variance_row(out, out + w, w, mean.data() + size_t(y) * size_t(w),
+                          variance.data() + size_t(y) * size_t(w));
+      });
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,

@@ -37,6 +37,13 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // x86-64).
 void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out);
 
+// EVSM's warped moments (Lauritzen & McCool 2008): v = sign·e^(sign·c·(2d − 1)) per texel
+// (d = the distance with "nothing seen" as 1, warped to [−1, 1]; sign +1 the positive warp,
+// −1 the negative one), box-filtered in double and stored as mean and variance floats like
+// filter_moments_double. |v| <= e^c and v² <= e^(2c): finite in float for c <= 44.36.
+void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
+                           std::vector<float>& mean, std::vector<float>& variance);
+
 // The two filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
 // runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the

@@ -9,6 +9,7 @@
 #endif
 
 #include "core/error.h"
+#include "techniques/chebyshev.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 
@@ -45,16 +46,6 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-// Chebyshev's upper bound with the variance floor and the light-bleeding remap.
-float chebyshev(double t, double mean, double var, double min_var, double bleed) {
-  if (t <= mean) return 1.0f;
-  var = std::max(var, min_var);
-  const double diff = t - mean;
-  double pmax = var / (var + diff * diff);
-  if (bleed > 0.0) pmax = std::clamp((pmax - bleed) / (1.0 - bleed), 0.0, 1.0);
-  return float(pmax);
-}
-
 // Visibility from the 4 bilinear taps' values of the planes: A (mean, or m1 in fp32 mode),
 // B (variance, or m2), M (max depth; read only with maxdepth_eps > 0), weights from fx, fy.
 struct VsmConsts {
@@ -63,8 +54,8 @@ struct VsmConsts {
 };
 inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const float* M, float fx,
                        float fy, float depth) {
-  const double w[4] = {(1.0 - fx) * (1.0 - fy), double(fx) * (1.0 - fy), (1.0 - fx) * double(fy),
-                       double(fx) * double(fy)};
+  double w[4];
+  bilinear_weights(fx, fy, w);
   const double t = double(depth);
   if (k.maxdepth) {
     const double m = std::max(std::max(M[0], M[1]), std::max(M[2], M[3]));
@@ -79,15 +70,9 @@ inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const
     }
     return chebyshev(t, m1, double(m2 - m1 * m1), k.min_var, k.bleed);
   }
-  // Centred: the mixture of the four texels' (mean, variance) has variance
-  // Σ w·var + Σ w·(mean − mean̄)², with no cancellation.
-  double mean = 0.0;
-  for (int i = 0; i < 4; ++i) mean += w[i] * A[i];
-  double var = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const double dm = A[i] - mean;
-    var += w[i] * (double(B[i]) + dm * dm);
-  }
+  // Centred: the mixture of the four texels' (mean, variance), with no cancellation.
+  double mean, var;
+  mixture_moments(w, A, B, mean, var);
   return chebyshev(t, mean, var, k.min_var, k.bleed);
 }
 

@@ -4,6 +4,8 @@
 // either filled by hand or holds one plane, so each expected value is a closed form.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "core/mesh_builders.h"
@@ -198,6 +200,41 @@ TEST(FilterResponse, EsmOverAFlatOccluderIsTheExponentialOfTheGap) {
             << spec << " receiver " << i;
       }
     }
+}
+
+// EVSM over the same plane: receiver t = r/far, occluder z = (r/2)/far, far = 10 m. Each warp
+// (v₊ = e^(c₊(2d−1)), v₋ = −e^(−c₋(2d−1))) gives p = σ²/(σ² + (v(t) − v(z))²) with the floor
+// σ² = (min_variance/far²)·(dv/dt)², dv/dt = 2c·e^(±c(2t−1)); 4 moments take the smaller p.
+double evsm_closed_form(double r, double c_pos, double c_neg, double min_var, bool four) {
+  const double far = 10.0, t = r / far, z = r / 2.0 / far, mv = min_var / (far * far);
+  auto bound = [&](double c, double sign) {
+    const double et = std::exp(sign * c * (2.0 * t - 1.0));
+    const double ez = std::exp(sign * c * (2.0 * z - 1.0));
+    const double var = mv * (2.0 * c * et) * (2.0 * c * et);
+    const double gap = sign * et - sign * ez;
+    return var / (var + gap * gap);
+  };
+  const double pos = bound(c_pos, 1.0);
+  return four ? std::min(pos, bound(c_neg, -1.0)) : pos;
+}
+
+TEST(FilterResponse, EvsmOverAFlatOccluderIsChebyshevInEachWarp) {
+  const PlaneCase c = occluder_plane();
+  double worst = 0.0;
+  for (const char* layout : {"cevsm", "tevsm"})
+    for (const int moments : {2, 4})
+      for (const double cp : {5.0, 20.0, 44.0})
+        for (const double mv : {0.01, 0.25}) {
+          const std::string spec = fmt::format("{}:res=256,moments={},c_pos={:g},c_neg=3,min_variance={:g}",
+                                               layout, moments, cp, mv);
+          const ShadowResult res = test::run(spec, c.scene, c.g);
+          for (size_t i = 0; i < c.r.size(); ++i) {
+            const double want = evsm_closed_form(c.r[i], cp, 3.0, mv, moments == 4);
+            worst = std::max(worst, std::fabs(double(res.mask.data[i]) - want));
+            EXPECT_NEAR(res.mask.data[i], want, 1e-4) << spec << " receiver " << i;
+          }
+        }
+  RecordProperty("worst_error", std::to_string(worst));
 }
 
 TEST(FilterResponse, TetrahedralTiesGoToTheLowerFace) {

@@ -1,0 +1,162 @@
+// The exponential variance filter ("evsm": cevsm, tevsm, pevsm; Lauritzen & McCool 2008): the
+// normalised distance d is warped to d' = 2d − 1 in [−1, 1], then to v₊ = e^(c₊·d') and, with
+// moments=4, to v₋ = −e^(−c₋·d'); each warp's moments are box-filtered like VSM's
+// (techniques/moment_filter.h: double, stored as mean and variance) and bounded by Chebyshev's
+// inequality at the receiver's warped depth; EVSM4 takes the smaller of the two bounds. Both
+// warps increase with d, so "the receiver lies beyond the occluders" keeps its sense. The
+// exponential warp shrinks the overlap that makes VSM leak light (docs/design.md §6).
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/exp_log.h"
+#include "techniques/chebyshev.h"
+#include "techniques/map_filter.h"
+#include "techniques/map_lookup.h"
+
+namespace shadowlab {
+namespace {
+
+// The largest exponent whose square e^(2c) is still finite in float: ln(FLT_MAX)/2.
+constexpr double kMaxExponent = 44.36;
+
+double read_exponent(SpecReader& r, const std::string& name, const char* flag, const char* key,
+                     double fallback) {
+  const double c = r.get_double(key, fallback, 0.01, 1e4);
+  if (c > kMaxExponent)
+    throw InputError(flag, fmt::format("{}: '{}' = {:g} overflows the stored moments: e^(2c) "
+                                       "exceeds float's range above c = {:g}",
+                                       name, key, c, kMaxExponent));
+  return c;
+}
+
+void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
+  read_blur(r, name, flag, p);
+  EvsmKeys& e = p.evsm;
+  e.moments = std::stoi(r.get_choice("moments", std::to_string(e.moments), {"2", "4"}));
+  e.c_pos = read_exponent(r, name, flag, "c_pos", e.c_pos);
+  e.c_neg = read_exponent(r, name, flag, "c_neg", e.c_neg);
+  e.min_variance = r.get_double("min_variance", e.min_variance, 0.0, 1e6);
+  e.bleed = r.get_double("bleed", e.bleed, 0.0, 0.99);
+}
+
+std::string keys_text(const MapParams& p) {
+  const EvsmKeys& e = p.evsm;
+  return fmt::format("blur={},moments={},c_pos={:g},c_neg={:g},min_variance={:g},bleed={:g}",
+                     p.blur, e.moments, e.c_pos, e.c_neg, e.min_variance, e.bleed);
+}
+
+void filter(const MapParams& p, LightMap& map) {
+  for (size_t f = 0; f < map.layout.faces.size(); ++f) {
+    if (!map.dist.rendered[f]) continue;
+    const LightFace& face = map.layout.faces[f];
+    const float* d = map.dist.distance[f].data();
+    filter_warped_moments(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0, map.a[f],
+                          map.b[f]);
+    if (p.evsm.moments == 4)
+      filter_warped_moments(d, face.width, face.height, p.blur, p.evsm.c_neg, -1.0, map.c[f],
+                            map.d[f]);
+  }
+}
+
+struct EvsmConsts {
+  double c_pos, c_neg;
+  double min_var;  // variance floor of the normalised distance
+  double bleed;
+  bool four;
+};
+
+// One warp's bound at normalised receiver depth t: the mixture of the 4 taps' moments (A mean,
+// B variance), the floor carried into the warp by its slope dv/dt = 2c·e^(±c·t') at the
+// receiver (first-order propagation of a distance variance), then Chebyshev.
+float warp_bound(const EvsmConsts& k, const double w[4], const float* A, const float* B, double t,
+                 double c, double sign) {
+  const double e = exp_d(sign * c * (2.0 * t - 1.0));
+  const double slope = 2.0 * c * e;
+  double mean, var;
+  mixture_moments(w, A, B, mean, var);
+  return chebyshev(sign * e, mean, var, k.min_var * slope * slope, k.bleed);
+}
+
+// Visibility from the 4 bilinear taps of the planes (P: positive mean, variance; N: negative).
+float evsm_value(const EvsmConsts& k, const float* PA, const float* PB, const float* NA,
+                 const float* NB, float fx, float fy, float depth) {
+  double w[4];
+  bilinear_weights(fx, fy, w);
+  const double t = double(depth);
+  const float pos = warp_bound(k, w, PA, PB, t, k.c_pos, 1.0);
+  if (!k.four) return pos;
+  return std::min(pos, warp_bound(k, w, NA, NB, t, k.c_neg, -1.0));
+}
+
+// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then evsm_value per
+// lane (the same function as the scalar path, so the same bits).
+struct EvsmBatch {
+  static constexpr bool kEnabled = true;
+  EvsmConsts k;
+  Bilinear8Fn bilinear8;
+  PlaneGather planes[4];  // a, b, c, d
+  int n;
+  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+    alignas(32) float v[4][4][8], fx[8], fy[8];
+    bilinear8(c, r, planes, n, v, fx, fy);
+    for (int lane = 0; lane < 8; ++lane) {
+      if (!r.active[lane]) continue;
+      float P[4][4];
+      for (int plane = 0; plane < n; ++plane)
+        for (int t = 0; t < 4; ++t) P[plane][t] = v[plane][t][lane];
+      out[lane] = evsm_value(k, P[0], P[1], P[2], P[3], fx[lane], fy[lane], r.depth[lane]);
+    }
+  }
+};
+
+void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
+            ImageF& mask, ImageU32* texels) {
+  const FaceLayout& L = map.layout;
+  const double inv_far = 1.0 / double(scene.light.far);
+  const EvsmKeys& e = p.evsm;
+  const EvsmConsts k{e.c_pos, e.c_neg, e.min_variance * inv_far * inv_far, e.bleed,
+                     e.moments == 4};
+  auto visibility = [&](const Receiver& r) {
+    const size_t fi = size_t(r.face);
+    const LightFace& f = L.faces[fi];
+    const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
+    const size_t idx[4] = {size_t(bl.y0) * size_t(f.width) + size_t(bl.x0),
+                           size_t(bl.y0) * size_t(f.width) + size_t(bl.x1),
+                           size_t(bl.y1) * size_t(f.width) + size_t(bl.x0),
+                           size_t(bl.y1) * size_t(f.width) + size_t(bl.x1)};
+    float P[4][4] = {};
+    for (int i = 0; i < 4; ++i) {
+      P[0][i] = map.a[fi][idx[i]];
+      P[1][i] = map.b[fi][idx[i]];
+      if (k.four) {
+        P[2][i] = map.c[fi][idx[i]];
+        P[3][i] = map.d[fi][idx[i]];
+      }
+    }
+    return evsm_value(k, P[0], P[1], P[2], P[3], bl.fx, bl.fy, r.depth);
+  };
+  EvsmBatch batch{k, bilinear8_simd(),
+                  {plane_gather(map.a), plane_gather(map.b), plane_gather(map.c),
+                   plane_gather(map.d)},
+                  k.four ? 4 : 2};
+  bool gathers = batch.bilinear8 != nullptr;
+  for (int i = 0; i < batch.n; ++i) gathers = gathers && batch.planes[i].ok;
+  if (gathers)
+    lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
+  else
+    lookup_pixels(scene, g, p, map, mask, texels, visibility);
+}
+
+uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear
+uint64_t stored_planes(const MapParams& p) { return p.evsm.moments == 4 ? 4 : 2; }
+uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
+
+}  // namespace
+
+const MapFilterOps kExponentialVarianceMap = {
+    "evsm",    "exponential variance shadow map", MapFilter::ExponentialVariance,
+    parse_keys, keys_text, filter, lookup, taps_per_lookup, tap_bytes, stored_planes};
+
+}  // namespace shadowlab
