@@ -8,6 +8,11 @@
 // ranges below (tests/core/exp_log_test.cpp checks against long double).
 #include <bit>
 #include <cstdint>
+#if defined(__x86_64__)
+#include <immintrin.h>
+
+#include <initializer_list>
+#endif
 
 namespace shadowlab {
 
@@ -96,5 +101,24 @@ inline float exp_f(float x) {
   const int32_t ni = std::bit_cast<int32_t>(t) - std::bit_cast<int32_t>(kShifter);
   return std::bit_cast<float>(std::bit_cast<int32_t>(p) + (ni << 23));
 }
+
+#if defined(__x86_64__)
+// exp_d of 4 doubles with AVX2 intrinsics: exp_d's operations in exp_d's order, so each lane
+// gets exp_d's bits (tests/core/exp_log_test.cpp), for kernels written with intrinsics.
+__attribute__((target("avx2"))) inline __m256d exp_d4(__m256d x) {
+  const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
+  const __m256d t = _mm256_add_pd(_mm256_mul_pd(x, _mm256_set1_pd(1.4426950408889634)), shifter);
+  const __m256d n = _mm256_sub_pd(t, shifter);
+  const __m256d r = _mm256_sub_pd(_mm256_sub_pd(x, _mm256_mul_pd(n, _mm256_set1_pd(0.693147180369123816490))),
+                                  _mm256_mul_pd(n, _mm256_set1_pd(1.90821492927058770002e-10)));
+  __m256d p = _mm256_set1_pd(1.0 / 6227020800.0);
+  for (const double c : {1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0,
+                         1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0, 1.0 / 120.0, 1.0 / 24.0,
+                         1.0 / 6.0, 0.5, 1.0, 1.0})
+    p = _mm256_add_pd(_mm256_mul_pd(p, r), _mm256_set1_pd(c));
+  const __m256i ni = _mm256_sub_epi64(_mm256_castpd_si256(t), _mm256_castpd_si256(shifter));
+  return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(ni, 52)));
+}
+#endif
 
 }  // namespace shadowlab

@@ -23,7 +23,7 @@ struct Times {
 };
 
 const char* const kDefaultSpecs =
-    "csm,csm:pcf=3,tsm,tsm:pcf=3,cvsm,tvsm,cesm,tesm";
+    "csm,csm:pcf=3,tsm,tsm:pcf=3,cvsm,tvsm,cesm,tesm,cevsm,tevsm";
 
 }  // namespace
 
@@ -103,13 +103,13 @@ int main(int argc, char** argv) {
       if (have(key(layout, "")) && have(key(layout, "pcf=3")))
         target(std::string(layout) + " pcf=3 lookup / pcf=1 lookup",
                lookup_ms[key(layout, "pcf=3")] / lookup_ms[key(layout, "")], 3.0);
-    for (const char* f : {"cvsm", "tvsm", "cesm", "tesm"})
-      if (have(csm1) && have(key(f, "")))
-        target(std::string(f) + " lookup / csm pcf=1 lookup", lookup_ms[key(f, "")] / lookup_ms[csm1], 2.0);
-    for (const char* f : {"cvsm", "tvsm", "cesm", "tesm"})
-      if (have(key(f, "")))
-        target(std::string(f) + " blur=3 filter / its face render",
-               filter_ms[key(f, "")] / render_ms[key(f, "")], 1.0);
+    // Every filtering technique present (any filter but depth compare), with its own keys.
+    for (const TechniqueSpec& s : specs)
+      if (s.name.substr(1) != "sm" && have(csm1))
+        target(s.text + " lookup / csm pcf=1 lookup", lookup_ms[s.text] / lookup_ms[csm1], 2.0);
+    for (const TechniqueSpec& s : specs)
+      if (s.name.substr(1) != "sm")
+        target(s.text + " filter / its face render", filter_ms[s.text] / render_ms[s.text], 1.0);
     for (const TechniqueSpec& s : specs)
       target(s.text + " faces needed / lookup", faces_ms[s.text] / lookup_ms[s.text], 0.10);
     return 0;

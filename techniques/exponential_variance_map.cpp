@@ -7,6 +7,10 @@
 // exponential warp shrinks the overlap that makes VSM leak light (docs/design.md §6).
 #include <algorithm>
 #include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -90,8 +94,71 @@ float evsm_value(const EvsmConsts& k, const float* PA, const float* PB, const fl
   return std::min(pos, warp_bound(k, w, NA, NB, t, k.c_neg, -1.0));
 }
 
-// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then evsm_value per
-// lane (the same function as the scalar path, so the same bits).
+#if defined(__x86_64__)
+#define SL_AVX2 __attribute__((target("avx2")))
+// warp_bound for 4 lanes in double with AVX2 intrinsics: its operations in its order
+// (std::max(a, b) is a < b ? b : a, std::clamp likewise; exp_d4 gives exp_d's bits), so the
+// lanes get warp_bound's bits before the final rounding to float.
+SL_AVX2 __m256d warp_bound4(const EvsmConsts& k, const __m256d* w, const __m256d* A,
+                            const __m256d* B, __m256d t, double c, double sign) {
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  const __m256d x = _mm256_mul_pd(_mm256_set1_pd(sign * c),
+                                  _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), t), one));
+  const __m256d e = exp_d4(x);
+  const __m256d slope = _mm256_mul_pd(_mm256_set1_pd(2.0 * c), e);
+  __m256d mean = zero;
+  for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
+  __m256d var = zero;
+  for (int i = 0; i < 4; ++i) {
+    const __m256d dm = _mm256_sub_pd(A[i], mean);
+    var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
+  }
+  const __m256d min_var = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(k.min_var), slope), slope);
+  const __m256d tw = _mm256_mul_pd(_mm256_set1_pd(sign), e);
+  var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));
+  const __m256d diff = _mm256_sub_pd(tw, mean);
+  __m256d pmax = _mm256_div_pd(var, _mm256_add_pd(var, _mm256_mul_pd(diff, diff)));
+  if (k.bleed > 0.0) {
+    const __m256d b = _mm256_set1_pd(k.bleed);
+    __m256d q = _mm256_div_pd(_mm256_sub_pd(pmax, b), _mm256_sub_pd(one, b));
+    q = _mm256_blendv_pd(q, one, _mm256_cmp_pd(one, q, _CMP_LT_OQ));
+    pmax = _mm256_blendv_pd(q, zero, _mm256_cmp_pd(q, zero, _CMP_LT_OQ));
+  }
+  return _mm256_blendv_pd(pmax, one, _mm256_cmp_pd(tw, mean, _CMP_LE_OQ));
+}
+
+// evsm_value for the 8 lanes of a batch, in two halves of 4 doubles.
+SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const float* fx,
+                             const float* fy, const float* depth, float* out) {
+  for (int half = 0; half < 2; ++half) {
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
+    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
+    const __m256d ox = _mm256_sub_pd(one, vx), oy = _mm256_sub_pd(one, vy);
+    const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(vx, oy), _mm256_mul_pd(ox, vy),
+                          _mm256_mul_pd(vx, vy)};
+    const __m256d t = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
+    __m256d A[4], B[4];
+    for (int i = 0; i < 4; ++i) {
+      A[i] = _mm256_cvtps_pd(_mm_load_ps(v[0][i] + 4 * half));
+      B[i] = _mm256_cvtps_pd(_mm_load_ps(v[1][i] + 4 * half));
+    }
+    __m128 res = _mm256_cvtpd_ps(warp_bound4(k, w, A, B, t, k.c_pos, 1.0));
+    if (k.four) {
+      for (int i = 0; i < 4; ++i) {
+        A[i] = _mm256_cvtps_pd(_mm_load_ps(v[2][i] + 4 * half));
+        B[i] = _mm256_cvtps_pd(_mm_load_ps(v[3][i] + 4 * half));
+      }
+      // std::min(pos, neg) = neg < pos ? neg : pos.
+      res = _mm_min_ps(_mm256_cvtpd_ps(warp_bound4(k, w, A, B, t, k.c_neg, -1.0)), res);
+    }
+    _mm_storeu_ps(out + 4 * half, res);
+  }
+}
+#endif
+
+// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then evsm_value's
+// arithmetic in AVX2 double (evsm_batch_avx2; lane by lane where AVX2 is off).
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
@@ -101,6 +168,10 @@ struct EvsmBatch {
   void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8(c, r, planes, n, v, fx, fy);
+#if defined(__x86_64__)
+    evsm_batch_avx2(k, v, fx, fy, r.depth, out);  // bilinear8 exists only with AVX2
+    return;
+#endif
     for (int lane = 0; lane < 8; ++lane) {
       if (!r.active[lane]) continue;
       float P[4][4];

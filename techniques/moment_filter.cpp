@@ -424,20 +424,40 @@ void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool s
   moments_double(dist, w, h, k, slope_term, false, mean, variance);
 }
 
-void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
-                           std::vector<float>& mean, std::vector<float>& variance) {
+namespace {
+
+void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
+                    bool fixed_kernels, std::vector<float>& mean, std::vector<float>& variance) {
   const size_t n = size_t(w) * size_t(h);
   mean.resize(n);
   variance.resize(n);
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
+  auto make_row = [&](int y, double* ext) {
+    warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
+    extend_row(ext, w, r);
+    extend_row(ext + ew, w, r);
+  };
+  const bool fixed = fixed_kernels && with_fixed_width(k, [&](auto kc) {
+    constexpr int K = decltype(kc)::value;
+    fused_box(
+        w, h, k, 2,
+        [&](int y, double* const* dst, double* ext) {
+          make_row(y, ext);
+          hsum_k<K>(ext, w, dst[0]);
+          hsum_k<K>(ext + ew, w, dst[1]);
+        },
+        [&](int y, const double* const* win, double*) {
+          vsm_out_k<K>(win, w, inv, mean.data() + size_t(y) * size_t(w),
+                       variance.data() + size_t(y) * size_t(w));
+        });
+  });
+  if (fixed) return;
   fused_box(
       w, h, k, 2,
       [&](int y, double* const* dst, double* ext) {
-        warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
-        extend_row(ext, w, r);
-        extend_row(ext + ew, w, r);
+        make_row(y, ext);
         hsum_row(ext, w, k, dst[0]);
         hsum_row(ext + ew, w, k, dst[1]);
       },
@@ -447,6 +467,19 @@ void filter_warped_moments(const float* dist, int w, int h, int k, double c, dou
         mean_variance_row(out, out + w, w, mean.data() + size_t(y) * size_t(w),
                           variance.data() + size_t(y) * size_t(w));
       });
+}
+
+}  // namespace
+
+void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
+                           std::vector<float>& mean, std::vector<float>& variance) {
+  warped_moments(dist, w, h, k, c, sign, true, mean, variance);
+}
+
+void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,
+                                  double sign, std::vector<float>& mean,
+                                  std::vector<float>& variance) {
+  warped_moments(dist, w, h, k, c, sign, false, mean, variance);
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,

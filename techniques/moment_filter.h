@@ -44,7 +44,7 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                            std::vector<float>& mean, std::vector<float>& variance);
 
-// The two filters above run kernels with the box width k a compile-time constant for k = 1, 3,
+// The filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
 // runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the
 // fixed-width kernels must equal bit for bit (tests/techniques/moment_filter_test.cpp).
@@ -52,5 +52,8 @@ void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool s
                                   std::vector<float>& mean, std::vector<float>& variance);
 void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
                            std::vector<float>& out);
+void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,
+                                  double sign, std::vector<float>& mean,
+                                  std::vector<float>& variance);
 
 }  // namespace shadowlab

@@ -28,6 +28,10 @@ __attribute__((target_clones("avx2", "default"))) void log_loop(const double* x,
   for (int i = 0; i < n; ++i) y[i] = log_d(x[i]);
 }
 
+__attribute__((target("avx2"), noinline)) void exp4_store(const double* x, double* y) {
+  _mm256_store_pd(y, exp_d4(_mm256_load_pd(x)));
+}
+
 // Distance in units of the last place of the exact value (long double).
 double ulps(double got, long double exact) {
   const double e = double(exact);
@@ -70,6 +74,23 @@ TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
   EXPECT_EQ(expf_one(0.0f), 1.0f);
   EXPECT_LE(worst, 2.0);
   RecordProperty("worst_expf_ulp", std::to_string(worst));
+}
+
+// exp_d4 (AVX2 intrinsics, for hand-written kernels) gives exp_d's bits, negative arguments
+// included (EVSM's negative warp).
+TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-700.0, 700.0);
+  for (int i = 0; i < 100000; i += 4) {
+    alignas(32) double x[4], y[4];
+    for (double& v : x) v = i < 4 ? double(i) * 0.25 - 0.5 : u(rng);
+    exp4_store(x, y);
+    for (int k = 0; k < 4; ++k) {
+      const double one = exp_one(x[k]);
+      ASSERT_EQ(std::memcmp(&y[k], &one, 8), 0) << x[k];
+    }
+  }
 }
 
 TEST(ExpLog, VectorizedLoopsGiveTheScalarBits) {

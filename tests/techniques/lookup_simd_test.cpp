@@ -136,5 +136,49 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
   }
 }
 
+// The filtering techniques' 8-lane batches (VSM, ESM, EVSM: gathers, then the arithmetic in
+// AVX2) against their scalar oracle on random maps, blurred by their own filter: bit for bit.
+TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  struct Config {
+    FaceLayoutKind layout;
+    MapFilter filter;
+    int moments;
+    double bleed;
+  };
+  for (const Config& cfg : {Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 2, 0.0},
+                            Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 4, 0.2},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::ExponentialVariance, 4, 0.0},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::ExponentialVariance, 2, 0.3},
+                            Config{FaceLayoutKind::Cube, MapFilter::Variance, 2, 0.2},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Exponential, 2, 0.0}}) {
+    const Case c = random_case(4096, 5, false);
+    MapParams p = default_map_params(cfg.layout, cfg.filter);
+    p.res = 64;
+    p.evsm.moments = cfg.moments;
+    p.evsm.bleed = p.vsm.bleed = cfg.bleed;
+    p.evsm.c_pos = 20.0;  // the random depths' spread: bounds strictly inside (0, 1)
+    LightMap map = threshold_map(c, p, 13);
+    filter_light_map(p, map);
+    ImageF scalar_mask, simd_mask;
+    ImageU32 scalar_texels, simd_texels;
+    lookup_with("1", c, p, map, scalar_mask, scalar_texels);
+    lookup_with("0", c, p, map, simd_mask, simd_texels);
+    const std::string what = "filter " + std::to_string(int(cfg.filter)) + " layout " +
+                             std::to_string(int(cfg.layout)) + " moments " +
+                             std::to_string(cfg.moments);
+    EXPECT_EQ(std::memcmp(scalar_mask.data.data(), simd_mask.data.data(), scalar_mask.data.size() * 4), 0) << what;
+    // Not vacuous: both branches of the bound (receiver in front: 1; behind: a fraction) occur
+    // on many receivers (measured 64-94 fractions of 4096 on the sparsest configurations).
+    size_t partial = 0, lit = 0;
+    for (const float v : scalar_mask.data) {
+      partial += v > 0.0f && v < 1.0f;
+      lit += v == 1.0f;
+    }
+    EXPECT_GT(partial, c.g.pixel_count() / 100) << what;
+    EXPECT_GT(lit, c.g.pixel_count() / 100) << what;
+  }
+}
+
 }  // namespace
 }  // namespace shadowlab

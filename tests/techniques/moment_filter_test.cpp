@@ -107,6 +107,13 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       EXPECT_EQ(std::memcmp(mean.data(), mean_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
       EXPECT_EQ(std::memcmp(var.data(), var_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
       EXPECT_EQ(std::memcmp(esm.data(), esm_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
+      for (const double sign : {1.0, -1.0}) {
+        std::vector<float> wm, wv, wm_o, wv_o;
+        filter_warped_moments(d.data(), w, h, k, 40.0, sign, wm, wv);
+        filter_warped_moments_oracle(d.data(), w, h, k, 40.0, sign, wm_o, wv_o);
+        EXPECT_EQ(std::memcmp(wm.data(), wm_o.data(), d.size() * 4), 0) << "evsm k " << k;
+        EXPECT_EQ(std::memcmp(wv.data(), wv_o.data(), d.size() * 4), 0) << "evsm k " << k;
+      }
     }
   }
 }
