@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 #include "core/error.h"
 
@@ -36,7 +37,8 @@ void write_file_atomically(const std::string& dir, const std::string& path,
     if (!out && err == 0) err = errno;
     if (!out) {
       fs::remove(tmp, ec);
-      throw InputError(tmp, "cannot write the " + what + ": " + std::strerror(err != 0 ? err : EIO));
+      throw InputError(tmp, "cannot write the " + what + ": " +
+                                std::generic_category().message(err != 0 ? err : EIO));
     }
   }
   fs::rename(tmp, path, ec);

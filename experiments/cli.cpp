@@ -5,11 +5,13 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
 #include "core/obj_loader.h"
@@ -47,6 +49,10 @@ void add_valued(CommandLine& cl, const std::string& flag, const std::string& pla
                 const std::string& help, std::function<void(const std::string&)> set) {
   const CLI::callback_t take = [flag, set](const CLI::results_t& values) {
     if (values.size() > 1) throw InputError(flag, "given twice");
+    // CLI11 takes the next word as the value whatever it looks like ("--out --no-alpha"); no
+    // value of ours starts with "--", so such a word is a missing value, not a value.
+    if (values.front().rfind("--", 0) == 0)
+      throw InputError(flag, "expects a value, got the flag '" + values.front() + "'");
     set(values.front());
     return true;
   };
@@ -98,7 +104,7 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
   // in shadowlab's one-line form.
   app.allow_extras(true);
   app.get_formatter()->column_width(28);
-  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm; spec NAME:key=value,...):\n" +
+  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm/evsm; spec NAME:key=value,...):\n" +
              technique_list_text());
   return cl;
 }
@@ -145,8 +151,15 @@ void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
   add_valued(cl, flag, "X,Y,Z", help, [flag, &value](const std::string& s) {
     const std::vector<std::string> parts = split(s, ',');
     if (parts.size() != 3) throw InputError(flag, "expected x,y,z, got '" + s + "'");
-    value = vec3(float(parse_double(flag, parts[0])), float(parse_double(flag, parts[1])),
-                 float(parse_double(flag, parts[2])));
+    float xyz[3];
+    for (int i = 0; i < 3; ++i) {
+      const double v = parse_double(flag, parts[size_t(i)]);
+      // Beyond float's range the conversion would give inf (formally undefined).
+      if (!(std::fabs(v) <= double(std::numeric_limits<float>::max())))
+        throw InputError(flag, parts[size_t(i)] + " is outside float's range");
+      xyz[i] = float(v);
+    }
+    value = vec3(xyz[0], xyz[1], xyz[2]);
   });
 }
 
@@ -208,9 +221,11 @@ void add_repeats(CommandLine& cl, int& repeats, int lo, const std::string& extra
 void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const std::string& reason) {
   const std::string group = "common flags not used here (an error if given; " + reason + ")";
   for (const std::string& flag : flags) {
+    cl.unused[flag] = reason;
     CLI::Option* old = cl.app->get_option_no_throw(flag);
     SL_CHECK(old != nullptr);
     const std::string help = old->get_description();
+    const std::string placeholder = old->get_type_name();
     const bool is_flag = old->get_expected_max() == 0;  // a switch takes no value
     cl.app->remove_option(old);
     auto fail = [flag, reason] {
@@ -225,6 +240,7 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
       return false;
     };
     cl.app->add_option(flag, reject, help)
+        ->type_name(placeholder)
         ->group(group)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   }
@@ -232,6 +248,21 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
 
 bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional) {
   CLI::App& app = *cl.app;
+  auto not_used = [&](const std::string& flag) {
+    if (const auto it = cl.unused.find(flag); it != cl.unused.end())
+      throw InputError(flag, "is not used by this experiment: " + it->second);
+  };
+  // Switches take no value: CLI11 would read "--no-alpha=true" (or "=") as a flag override.
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const size_t eq = a.find('=');
+    if (a.rfind("--", 0) != 0 || eq == std::string::npos) continue;
+    const CLI::Option* o = app.get_option_no_throw(a.substr(0, eq));
+    if (o && o->get_expected_max() == 0) {
+      not_used(a.substr(0, eq));
+      throw InputError(a.substr(0, eq), "takes no value");
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -241,15 +272,21 @@ bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_posit
     const std::string message = e.what();
     const std::string flag = flag_in_message(app, message);
     if (flag.empty()) throw InputError(cl.program, message);
+    not_used(flag);
     const CLI::Option* o = app.get_option_no_throw(flag);
     if (message.find("missing") != std::string::npos && o)
       throw InputError(flag, "expects a value " + o->get_type_name());
     if (message.find("flag override") != std::string::npos)
       throw InputError(flag, "takes no value");
-    throw InputError(flag, message);
+    // CLI11's own text usually starts with the flag: not named twice.
+    const std::string prefix = flag + ": ";
+    throw InputError(flag, message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message);
   }
   for (const std::string& a : app.remaining()) {
-    if (a.rfind("--", 0) == 0 && a != "--")
+    if (a == "--") throw InputError(a, "unexpected argument (see --help)");
+    // "--name" and "-x": flags we do not have (a lone "-" or "-1" is an argument).
+    if ((a.rfind("--", 0) == 0) ||
+        (a.size() > 1 && a[0] == '-' && std::isalpha(static_cast<unsigned char>(a[1]))))
       throw InputError(a.substr(0, a.find('=')), "unknown flag (see --help)");
     if (cl.positional.size() >= max_positional) throw InputError(a, "unexpected argument (see --help)");
     cl.positional.push_back(a);

@@ -6,6 +6,7 @@
 // naming the flag: one line on stderr and exit code 2 (run_main).
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,7 @@ struct CommandLine {
   std::string program;                  // "render"
   std::shared_ptr<CLI::App> app;
   std::vector<std::string> positional;  // filled by parse_command_line
+  std::map<std::string, std::string> unused;  // flag → why this experiment does not use it
 };
 
 // A command line with --help, --version and --list-techniques; `synopsis` is the usage line

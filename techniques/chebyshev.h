@@ -1,7 +1,7 @@
 #pragma once
 // Chebyshev's one-sided bound and the bilinear mixture of centred moments, shared by the
 // moment filters that store (mean, variance) per texel: vsm (variance_map.cpp) and evsm
-// (exponential_variance_map.cpp). docs/design.md §6 gives the model.
+// (exponential_variance_map.cpp). docs/design.md §6 (VSM, EVSM) gives the model.
 #include <algorithm>
 
 namespace shadowlab {

@@ -4,7 +4,7 @@
 // (techniques/moment_filter.h: double, stored as mean and variance) and bounded by Chebyshev's
 // inequality at the receiver's warped depth; EVSM4 takes the smaller of the two bounds. Both
 // warps increase with d, so "the receiver lies beyond the occluders" keeps its sense. The
-// exponential warp shrinks the overlap that makes VSM leak light (docs/design.md §6).
+// exponential warp shrinks the overlap that makes VSM leak light (docs/design.md §6, EVSM).
 #include <algorithm>
 #include <cmath>
 #if defined(__x86_64__)
@@ -158,7 +158,8 @@ SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const 
 #endif
 
 // 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then evsm_value's
-// arithmetic in AVX2 double (evsm_batch_avx2; lane by lane where AVX2 is off).
+// arithmetic in AVX2 double (evsm_batch_avx2). Used only where the AVX2 kernels exist
+// (bilinear8_simd() is null otherwise, and the scalar loop runs evsm_value).
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
@@ -169,16 +170,8 @@ struct EvsmBatch {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8(c, r, planes, n, v, fx, fy);
 #if defined(__x86_64__)
-    evsm_batch_avx2(k, v, fx, fy, r.depth, out);  // bilinear8 exists only with AVX2
-    return;
+    evsm_batch_avx2(k, v, fx, fy, r.depth, out);
 #endif
-    for (int lane = 0; lane < 8; ++lane) {
-      if (!r.active[lane]) continue;
-      float P[4][4];
-      for (int plane = 0; plane < n; ++plane)
-        for (int t = 0; t < 4; ++t) P[plane][t] = v[plane][t][lane];
-      out[lane] = evsm_value(k, P[0], P[1], P[2], P[3], fx[lane], fy[lane], r.depth[lane]);
-    }
   }
 };
 

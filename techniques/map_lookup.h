@@ -11,8 +11,9 @@
 namespace shadowlab {
 
 // The receiver of lane k of a SIMD group.
-inline Receiver lane_receiver(const Receivers8& r, int k) {
+inline Receiver lane_receiver(const Receivers8& r, int k, size_t pixel) {
   Receiver rc;
+  rc.pixel = pixel;
   rc.face = r.face[k];
   rc.st = vec2(r.sx[k], r.sy[k]);
   rc.depth = r.depth[k];
@@ -44,7 +45,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
   const MapLookupConsts c = map_lookup_consts(scene, L, p, map.dist.distance);
   const bool depth = p.filter == MapFilter::Depth && c.gather_ok;
   const Depth1Fn depth1 = depth && p.pcf <= 1 ? depth1_simd() : nullptr;
-  const PcfFn pcf = depth && p.pcf > 1 ? pcf_simd() : nullptr;
+  const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? pcf_simd() : nullptr;
   lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
     size_t i = b;
     for (; i + 8 <= e; i += 8) {
@@ -77,7 +78,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
       }
       for (int k = 0; k < 8; ++k) {
         if (!r.active[k]) continue;
-        const Receiver rc = lane_receiver(r, k);
+        const Receiver rc = lane_receiver(r, k, i + size_t(k));
         m[k] = std::clamp(visibility(rc), 0.0f, 1.0f);
         if (t) t[k] = rc.texel;
       }

@@ -27,6 +27,12 @@ enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance };
 //          the face that owns it. Depth compare only.
 enum class SeamMode { Guard, Cross };
 
+// The PCF footprint of depth compare (pcf > 1): the N×N grid of bilinear-weighted taps, or
+// `taps` Poisson-disk taps over a disk of diameter pcf texels, rotated per pixel by an angle
+// from the counter-based random numbers (core/rng.h: a function of the pixel, never the
+// thread), each a bilinear-weighted compare.
+enum class PcfKind { Grid, Poisson };
+
 // Keys of the variance filter (vsm).
 struct VsmKeys {
   double min_variance = 1e-6;  // variance floor, m² (1 mm standard deviation)
@@ -68,6 +74,8 @@ struct MapParams {
   float normal = 0.0f;    // normal offset: lookup point moved along the geometric normal by
                           // normal × texel size at the receiver × (1 - N·L)
   int pcf = 1;            // depth: 1 = nearest texel, odd N >= 3 = N×N bilinear-weighted taps
+  PcfKind pcf_kind = PcfKind::Grid;  // depth: grid, or poisson (needs pcf >= 3 and the guard band)
+  int taps = 16;          // depth, poisson: taps per pixel
   SeamMode seams = SeamMode::Guard;  // depth: default Cross on the cube layout (csm's own
                                      // mechanism, kept byte for byte), Guard elsewhere
   int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)

@@ -4,6 +4,7 @@
 // bilinear and PCF taps (with cross-face taps for SeamMode::Cross); and the pixel loop that
 // applies docs/design.md §4's mask rules (no geometry: 1; facing away from the light: 0).
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct Receiver {
   vec2 st{0.0f};       // continuous texel coordinates in the face's image
   float depth = 0.0f;  // biased radial distance / far (what the map's values are compared with)
   uint32_t texel = 0;  // texel index: face × texels per face + y × width + x
+  size_t pixel = 0;    // the GBuffer pixel (seeds per-pixel random numbers: Poisson PCF)
 };
 
 // Texel of a continuous coordinate, clamped to [0, n). Truncation equals floor here: they
@@ -177,8 +179,9 @@ void lookup_faces(const Scene& scene, const GBuffer& g, const FaceLayout& layout
         mask.data[i] = 0.0f;
         continue;
       }
-      const Receiver r =
+      Receiver r =
           make_receiver(layout, light, p, reach, inv_far, g.position[i], g.geo_normal[i]);
+      r.pixel = i;
       if (texels) texels->data[i] = r.texel;
       mask.data[i] = std::clamp(visibility(r), 0.0f, 1.0f);
     }

@@ -118,12 +118,11 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
   });
 }
 
-// The fused separable box (the fast path of filter_moments_double and filter_esm_log): per
-// chunk of output rows, each input row's k-wide horizontal sums are computed once into a small
-// chunk buffer, then each output row sums its k rows of that buffer. Every output is the same
-// sequence of double additions as box_mean's two passes (left to right, then top to bottom, then
-// × 1/k²), so the results are bit-identical to it; the loops run over x, which the compiler
-// vectorizes without reordering any one texel's additions.
+// The row loops of the fused separable box (fused_box below; filter_moments_double,
+// filter_esm_log and filter_warped_moments): each input row's k-wide horizontal sums, then each
+// output row's sum of its k rows. Every output is the same sequence of double additions as
+// box_mean's two passes (left to right, then top to bottom, then × 1/k²); the loops run over x,
+// which the compiler vectorizes without reordering any one texel's additions.
 
 // out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
 // texels on each side).
@@ -203,7 +202,7 @@ inline void extend_row(double* ext, int w, int r) {
 // Kernels for the common box widths with k a compile-time constant, so each x iteration keeps
 // its k-term sums in registers instead of re-reading and re-storing whole rows (the runtime-k
 // loops above, kept for other widths and the slope term). The additions are the same, in the
-// same order: a sum starts from 0.0 (0.0 + a == a, all terms being >= 0) and adds left to right,
+// same order: a sum starts from 0.0 (as the runtime-k hsum_row does) and adds left to right,
 // rows top to bottom, then × 1/k²; so either path gives the other's bits.
 
 // VSM: h1[x] = Σ_i d, h2[x] = Σ_i d² over ext[x .. x + K − 1] (ext: the clamped finite row).

@@ -125,6 +125,15 @@ TEST(Mains, CommandLineErrorsNameTheFlag) {
   expect_clear_error(base + " stray", "stray: unexpected argument");
   expect_clear_error(base + " --fov 0x10", "--fov: expected a number, got '0x10'");
   expect_clear_error("technique_bench --repeats 2", "--repeats: 2 is outside [3, 100000]");
+  // Found by review: a flag taken as the previous flag's value, values on switches (also the
+  // ones run_main answers), single-dash words, a leftover "--", coordinates beyond float.
+  expect_clear_error("render --technique csm --out --no-alpha", "--out: expects a value, got the flag '--no-alpha'");
+  expect_clear_error(base + " --no-alpha=true", "--no-alpha: takes no value");
+  expect_clear_error("render --version=x", "--version: takes no value");
+  expect_clear_error(base + " -j", "-j: unknown flag");
+  expect_clear_error(base + " --", "--: unexpected argument");
+  expect_clear_error(base + " --eye 1e39,0,0", "--eye: 1e39 is outside float's range");
+  expect_clear_error("metric a.exr b.exr --max-memory", "--max-memory: is not used by this experiment");
   // A value may start with '-' (a negative coordinate), in both spellings.
   for (const char* eye : {" --eye -1,2.5,3", " --eye=-1,2.5,3"}) {
     const ProcResult r = run(base + eye);

@@ -34,7 +34,9 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
     for (const char* spec : {"tsm:res=128,pcf=3", "cvsm:res=128,slope_moment=1,maxdepth_eps=0.02",
                              "tvsm:res=128,fp32=1", "cesm:res=128,c=300", "tesm:res=64,normal=1",
                              "csm:res=256", "tsm:res=128", "csm:res=128,pcf=5,seams=guard",
-                             "tsm:res=128,pcf=3,seams=cross", "cvsm:res=128,bleed=0.2", "tesm:res=128"})
+                             "tsm:res=128,pcf=3,seams=cross", "cvsm:res=128,bleed=0.2", "tesm:res=128",
+                             "csm:res=128,pcf=5,pcf_kind=poisson", "tsm:res=128,pcf=3,pcf_kind=poisson,taps=8",
+                             "cevsm:res=128,moments=4,bleed=0.1"})
       o.family.push_back(test::run(spec, scene, o.g));
     outs.push_back(std::move(o));
   }

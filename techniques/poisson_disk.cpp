@@ -1,0 +1,39 @@
+#include "techniques/poisson_disk.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/rng.h"
+
+namespace shadowlab {
+
+PoissonDisk poisson_disk(int n) {
+  SL_CHECK(n >= 1 && n <= 256);
+  PoissonDisk d;
+  float r = 0.85f * std::sqrt(1.0f / float(n));
+  uint64_t candidate = 0;
+  int rejected = 0;
+  while (int(d.points.size()) < n) {
+    const uint64_t h = rng_hash(candidate, 0, uint64_t(n), 0);
+    ++candidate;
+    const vec2 q(2.0f * rng_float(h) - 1.0f, 2.0f * rng_float(mix64(h)) - 1.0f);
+    if (glm::dot(q, q) > 1.0f) continue;  // outside the disk: not a candidate
+    bool ok = true;
+    for (const vec2& p : d.points) ok = ok && glm::distance(p, q) >= r;
+    if (ok) {
+      d.points.push_back(q);
+      continue;
+    }
+    if (++rejected >= 200 * n) {
+      r *= 0.95f;
+      rejected = 0;
+    }
+  }
+  d.min_distance = n > 1 ? 2.0f : 0.0f;
+  for (size_t i = 0; i < d.points.size(); ++i)
+    for (size_t j = i + 1; j < d.points.size(); ++j)
+      d.min_distance = std::min(d.min_distance, glm::distance(d.points[i], d.points[j]));
+  return d;
+}
+
+}  // namespace shadowlab
