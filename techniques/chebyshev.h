@@ -3,6 +3,9 @@
 // moment filters that store (mean, variance) per texel: vsm (variance_map.cpp) and evsm
 // (exponential_variance_map.cpp). docs/design.md §6 (VSM, EVSM) gives the model.
 #include <algorithm>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace shadowlab {
 
@@ -37,5 +40,37 @@ inline void mixture_moments(const double w[4], const float* A, const float* B, d
     var += w[i] * (double(B[i]) + dm * dm);
   }
 }
+
+#if defined(__x86_64__)
+// mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits.
+__attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, const __m256d* A,
+                                                             const __m256d* B, __m256d& mean,
+                                                             __m256d& var) {
+  mean = _mm256_setzero_pd();
+  for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
+  var = _mm256_setzero_pd();
+  for (int i = 0; i < 4; ++i) {
+    const __m256d dm = _mm256_sub_pd(A[i], mean);
+    var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
+  }
+}
+
+// chebyshev for 4 lanes in double, before its rounding to float: std::max(a, b) is
+// a < b ? b : a and std::clamp likewise, as compare-and-blend, so each lane gets its bits.
+__attribute__((target("avx2"))) inline __m256d chebyshev4(__m256d t, __m256d mean, __m256d var,
+                                                         __m256d min_var, double bleed) {
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));
+  const __m256d diff = _mm256_sub_pd(t, mean);
+  __m256d pmax = _mm256_div_pd(var, _mm256_add_pd(var, _mm256_mul_pd(diff, diff)));
+  if (bleed > 0.0) {
+    const __m256d b = _mm256_set1_pd(bleed);
+    __m256d q = _mm256_div_pd(_mm256_sub_pd(pmax, b), _mm256_sub_pd(one, b));
+    q = _mm256_blendv_pd(q, one, _mm256_cmp_pd(one, q, _CMP_LT_OQ));
+    pmax = _mm256_blendv_pd(q, zero, _mm256_cmp_pd(q, zero, _CMP_LT_OQ));
+  }
+  return _mm256_blendv_pd(pmax, one, _mm256_cmp_pd(t, mean, _CMP_LE_OQ));
+}
+#endif
 
 }  // namespace shadowlab

@@ -101,30 +101,15 @@ float evsm_value(const EvsmConsts& k, const float* PA, const float* PB, const fl
 // lanes get warp_bound's bits before the final rounding to float.
 SL_AVX2 __m256d warp_bound4(const EvsmConsts& k, const __m256d* w, const __m256d* A,
                             const __m256d* B, __m256d t, double c, double sign) {
-  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  const __m256d one = _mm256_set1_pd(1.0);
   const __m256d x = _mm256_mul_pd(_mm256_set1_pd(sign * c),
                                   _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), t), one));
   const __m256d e = exp_d4(x);
   const __m256d slope = _mm256_mul_pd(_mm256_set1_pd(2.0 * c), e);
-  __m256d mean = zero;
-  for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
-  __m256d var = zero;
-  for (int i = 0; i < 4; ++i) {
-    const __m256d dm = _mm256_sub_pd(A[i], mean);
-    var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
-  }
+  __m256d mean, var;
+  mixture_moments4(w, A, B, mean, var);
   const __m256d min_var = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(k.min_var), slope), slope);
-  const __m256d tw = _mm256_mul_pd(_mm256_set1_pd(sign), e);
-  var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));
-  const __m256d diff = _mm256_sub_pd(tw, mean);
-  __m256d pmax = _mm256_div_pd(var, _mm256_add_pd(var, _mm256_mul_pd(diff, diff)));
-  if (k.bleed > 0.0) {
-    const __m256d b = _mm256_set1_pd(k.bleed);
-    __m256d q = _mm256_div_pd(_mm256_sub_pd(pmax, b), _mm256_sub_pd(one, b));
-    q = _mm256_blendv_pd(q, one, _mm256_cmp_pd(one, q, _CMP_LT_OQ));
-    pmax = _mm256_blendv_pd(q, zero, _mm256_cmp_pd(q, zero, _CMP_LT_OQ));
-  }
-  return _mm256_blendv_pd(pmax, one, _mm256_cmp_pd(tw, mean, _CMP_LE_OQ));
+  return chebyshev4(_mm256_mul_pd(_mm256_set1_pd(sign), e), mean, var, min_var, k.bleed);
 }
 
 // evsm_value for the 8 lanes of a batch, in two halves of 4 doubles.

@@ -88,24 +88,9 @@ __attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m
   const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
   const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(fx, oy), _mm256_mul_pd(ox, fy),
                         _mm256_mul_pd(fx, fy)};
-  __m256d mean = zero;
-  for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
-  __m256d var = zero;
-  for (int i = 0; i < 4; ++i) {
-    const __m256d dm = _mm256_sub_pd(A[i], mean);
-    var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
-  }
-  const __m256d min_var = _mm256_set1_pd(k.min_var);
-  var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));
-  const __m256d diff = _mm256_sub_pd(t, mean);
-  __m256d pmax = _mm256_div_pd(var, _mm256_add_pd(var, _mm256_mul_pd(diff, diff)));
-  if (k.bleed > 0.0) {
-    const __m256d b = _mm256_set1_pd(k.bleed);
-    __m256d q = _mm256_div_pd(_mm256_sub_pd(pmax, b), _mm256_sub_pd(one, b));
-    q = _mm256_blendv_pd(q, one, _mm256_cmp_pd(one, q, _CMP_LT_OQ));
-    pmax = _mm256_blendv_pd(q, zero, _mm256_cmp_pd(q, zero, _CMP_LT_OQ));
-  }
-  __m256d result = _mm256_blendv_pd(pmax, one, _mm256_cmp_pd(t, mean, _CMP_LE_OQ));
+  __m256d mean, var;
+  mixture_moments4(w, A, B, mean, var);
+  __m256d result = chebyshev4(t, mean, var, _mm256_set1_pd(k.min_var), k.bleed);
   if (k.maxdepth) {
     // m = max(max(M0, M1), max(M2, M3)) in float, then t > m + eps → 0.
     const __m256 m01 = _mm256_blendv_ps(M4[0], M4[1], _mm256_cmp_ps(M4[0], M4[1], _CMP_LT_OQ));
