@@ -3,10 +3,8 @@
 // rotated Poisson-disk taps (pcf_kind=poisson), with the seams of techniques/map_params.h
 // (cross-face taps or a guard band).
 #include <algorithm>
-#include <cmath>
 
 #include "core/error.h"
-#include "core/rng.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 #include "techniques/poisson_disk.h"
@@ -44,8 +42,8 @@ std::string keys_text(const MapParams& p) {
 // the guard band keeps them inside its image). Returns the lit fraction.
 float poisson_visibility(const LightFace& f, const float* dist, const Receiver& r,
                          const PoissonDisk& disk, float radius) {
-  const double angle = 6.283185307179586 * double(rng_float(rng_hash(r.pixel, 0, 0x9015504eull)));
-  const float c = float(std::cos(angle)), s = float(std::sin(angle));
+  const vec2 rot = poisson_rotation(r.pixel);
+  const float c = rot.x, s = rot.y;
   float lit = 0.0f;
   for (const vec2& q : disk.points) {
     const vec2 st(r.st.x + radius * (c * q.x - s * q.y), r.st.y + radius * (s * q.x + c * q.y));

@@ -134,10 +134,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     const LightFace& f = L.faces[size_t(face)];
     const float* z = map.a[size_t(face)].data();
     const Bilinear bl = bilinear_taps(st, f.width, f.height);
-    z4[0] = z[size_t(bl.y0) * size_t(f.width) + size_t(bl.x0)];
-    z4[1] = z[size_t(bl.y0) * size_t(f.width) + size_t(bl.x1)];
-    z4[2] = z[size_t(bl.y1) * size_t(f.width) + size_t(bl.x0)];
-    z4[3] = z[size_t(bl.y1) * size_t(f.width) + size_t(bl.x1)];
+    size_t idx[4];
+    bilinear_indices(bl, f.width, idx);
+    for (int i = 0; i < 4; ++i) z4[i] = z[idx[i]];
     fx = bl.fx;
     fy = bl.fy;
   };

@@ -104,6 +104,15 @@ inline Bilinear bilinear_taps(vec2 st, int w, int h) {
   return b;
 }
 
+// Texel indices of a bilinear footprint in a w-wide image, in the order (x0,y0), (x1,y0),
+// (x0,y1), (x1,y1).
+inline void bilinear_indices(const Bilinear& b, int w, size_t idx[4]) {
+  idx[0] = size_t(b.y0) * size_t(w) + size_t(b.x0);
+  idx[1] = size_t(b.y0) * size_t(w) + size_t(b.x1);
+  idx[2] = size_t(b.y1) * size_t(w) + size_t(b.x0);
+  idx[3] = size_t(b.y1) * size_t(w) + size_t(b.x1);
+}
+
 // True when every tap of an N×N PCF at st lies inside the face's w × h image.
 inline bool pcf_taps_inside(vec2 st, int pcf, int w, int h) {
   if (pcf <= 1) return true;

@@ -36,4 +36,9 @@ PoissonDisk poisson_disk(int n) {
   return d;
 }
 
+vec2 poisson_rotation(size_t pixel) {
+  const double angle = 6.283185307179586 * double(rng_float(rng_hash(pixel, 0, 0x9015504eull)));
+  return vec2(float(std::cos(angle)), float(std::sin(angle)));
+}
+
 }  // namespace shadowlab

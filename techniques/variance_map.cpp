@@ -166,10 +166,8 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     const size_t fi = size_t(r.face);
     const LightFace& f = L.faces[fi];
     const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
-    const size_t idx[4] = {size_t(bl.y0) * size_t(f.width) + size_t(bl.x0),
-                           size_t(bl.y0) * size_t(f.width) + size_t(bl.x1),
-                           size_t(bl.y1) * size_t(f.width) + size_t(bl.x0),
-                           size_t(bl.y1) * size_t(f.width) + size_t(bl.x1)};
+    size_t idx[4];
+    bilinear_indices(bl, f.width, idx);
     float A[4], B[4], M[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int i = 0; i < 4; ++i) {
       A[i] = map.a[fi][idx[i]];
