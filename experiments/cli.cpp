@@ -43,6 +43,21 @@ T in_range(const std::string& flag, const std::string& text, T v, T lo, T hi) {
   return v;
 }
 
+int int_in(const std::string& flag, const std::string& s, int lo, int hi) {
+  return int(in_range<long>(flag, s, parse_long(flag, s), lo, hi));
+}
+
+double double_in(const std::string& flag, const std::string& s, double lo, double hi) {
+  return in_range(flag, s, parse_double(flag, s), lo, hi);
+}
+
+// A switch: an option that takes no value.
+bool is_switch(const CLI::Option* o) { return o->get_expected_max() == 0; }
+
+[[noreturn]] void throw_unused(const std::string& flag, const std::string& reason) {
+  throw InputError(flag, "is not used by this experiment: " + reason);
+}
+
 // Registers `flag` taking one value; `set` receives it. CLI11 collects every occurrence
 // (TakeAll) so that a second one is an error here instead of silently winning.
 void add_valued(CommandLine& cl, const std::string& flag, const std::string& placeholder,
@@ -111,30 +126,26 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
 
 void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
              const std::string& help, int& value, int lo, int hi) {
-  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
-    value = int(in_range<long>(flag, s, parse_long(flag, s), lo, hi));
-  });
+  add_valued(cl, flag, placeholder, help,
+             [flag, &value, lo, hi](const std::string& s) { value = int_in(flag, s, lo, hi); });
 }
 
 void add_int(CommandLine& cl, const std::string& flag, const std::string& placeholder,
              const std::string& help, std::optional<int>& value, int lo, int hi) {
-  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
-    value = int(in_range<long>(flag, s, parse_long(flag, s), lo, hi));
-  });
+  add_valued(cl, flag, placeholder, help,
+             [flag, &value, lo, hi](const std::string& s) { value = int_in(flag, s, lo, hi); });
 }
 
 void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                 const std::string& help, double& value, double lo, double hi) {
-  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
-    value = in_range(flag, s, parse_double(flag, s), lo, hi);
-  });
+  add_valued(cl, flag, placeholder, help,
+             [flag, &value, lo, hi](const std::string& s) { value = double_in(flag, s, lo, hi); });
 }
 
 void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                 const std::string& help, std::optional<double>& value, double lo, double hi) {
-  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
-    value = in_range(flag, s, parse_double(flag, s), lo, hi);
-  });
+  add_valued(cl, flag, placeholder, help,
+             [flag, &value, lo, hi](const std::string& s) { value = double_in(flag, s, lo, hi); });
 }
 
 void add_int_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
@@ -142,7 +153,7 @@ void add_int_list(CommandLine& cl, const std::string& flag, const std::string& p
   add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
     value.clear();
     for (const std::string& item : split(s, ','))
-      value.push_back(int(in_range<long>(flag, item, parse_long(flag, item), lo, hi)));
+      value.push_back(int_in(flag, item, lo, hi));
   });
 }
 
@@ -188,7 +199,9 @@ void add_common_options(CommandLine& cl, CommonOptions& o) {
   add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage) or an .obj file (default: default)", o.scene);
   add_int(cl, "--width", "W", "image width in pixels (default: the scene's camera, 1024)", o.width, 1, kMaxImageSide);
   add_int(cl, "--height", "H", "image height in pixels (default: the scene's camera, 768)", o.height, 1, kMaxImageSide);
-  add_int(cl, "--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)", o.threads, 1, 1024);
+  // Applied as it is parsed, before any work.
+  add_valued(cl, "--threads", "N", "worker threads (default: $SHADOWLAB_THREADS or all cores)",
+             [](const std::string& s) { set_thread_count(int_in("--threads", s, 1, 1024)); });
   add_double(cl, "--light-radius", "R", "sphere-light radius in metres; 0 = hard point light (default: the scene's)", o.light_radius, 0.0, 1e4);
   add_vec3(cl, "--light-pos", "light position, metres (default: the scene's)", o.light_pos);
   add_vec3(cl, "--eye", "camera position, metres (default: the scene's)", o.eye);
@@ -226,18 +239,15 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
     SL_CHECK(old != nullptr);
     const std::string help = old->get_description();
     const std::string placeholder = old->get_type_name();
-    const bool is_flag = old->get_expected_max() == 0;  // a switch takes no value
+    const bool is_flag = is_switch(old);
     cl.app->remove_option(old);
-    auto fail = [flag, reason] {
-      throw InputError(flag, "is not used by this experiment: " + reason);
-    };
     if (is_flag) {
-      cl.app->add_flag_function(flag, [fail](int64_t) { fail(); }, help)->group(group);
+      cl.app->add_flag_function(flag, [flag, reason](int64_t) { throw_unused(flag, reason); }, help)
+          ->group(group);
       continue;
     }
-    const CLI::callback_t reject = [fail](const CLI::results_t&) -> bool {
-      fail();
-      return false;
+    const CLI::callback_t reject = [flag, reason](const CLI::results_t&) -> bool {
+      throw_unused(flag, reason);
     };
     cl.app->add_option(flag, reject, help)
         ->type_name(placeholder)
@@ -249,8 +259,7 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
 bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional) {
   CLI::App& app = *cl.app;
   auto not_used = [&](const std::string& flag) {
-    if (const auto it = cl.unused.find(flag); it != cl.unused.end())
-      throw InputError(flag, "is not used by this experiment: " + it->second);
+    if (const auto it = cl.unused.find(flag); it != cl.unused.end()) throw_unused(flag, it->second);
   };
   // Switches take no value: CLI11 would read "--no-alpha=true" (or "=") as a flag override.
   for (int i = 1; i < argc; ++i) {
@@ -258,7 +267,7 @@ bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_posit
     const size_t eq = a.find('=');
     if (a.rfind("--", 0) != 0 || eq == std::string::npos) continue;
     const CLI::Option* o = app.get_option_no_throw(a.substr(0, eq));
-    if (o && o->get_expected_max() == 0) {
+    if (o && is_switch(o)) {
       not_used(a.substr(0, eq));
       throw InputError(a.substr(0, eq), "takes no value");
     }
@@ -290,10 +299,6 @@ bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_posit
       throw InputError(a.substr(0, a.find('=')), "unknown flag (see --help)");
     if (cl.positional.size() >= max_positional) throw InputError(a, "unexpected argument (see --help)");
     cl.positional.push_back(a);
-  }
-  if (const CLI::Option* t = app.get_option_no_throw("--threads"); t && t->count() > 0) {
-    // Parsed and range-checked by its option already; applied before any work.
-    set_thread_count(std::stoi(t->results().front()));
   }
   return true;
 }

@@ -61,7 +61,7 @@ void add_switch(CommandLine& cl, const std::string& flag, const std::string& hel
 // keep the scene's own values.
 struct CommonOptions {
   std::string scene = "default";
-  std::optional<int> width, height, threads;
+  std::optional<int> width, height;  // (--threads is applied as it is parsed)
   std::optional<double> light_radius, fov, alpha_cutoff;
   std::optional<vec3> light_pos, eye, target;
   bool no_alpha = false;
@@ -84,7 +84,7 @@ void add_repeats(CommandLine& cl, int& repeats, int lo, const std::string& extra
 void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const std::string& reason);
 
 // Parses argv (at most max_positional positional arguments). Returns false when --help was
-// printed (the main then returns 0). Applies --threads when present.
+// printed (the main then returns 0). --threads takes effect as it is parsed.
 bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional = 0);
 
 // The scene the common options describe: a built-in name or an .obj path, with every override

@@ -126,16 +126,14 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
 
 // out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
 // texels on each side).
-SL_ROW_CLONES void hsum_row(const double* ext, int w, int k,
-                                                               double* out) {
+SL_ROW_CLONES void hsum_row(const double* ext, int w, int k, double* out) {
   for (int x = 0; x < w; ++x) out[x] = 0.0;
   for (int i = 0; i < k; ++i)
     for (int x = 0; x < w; ++x) out[x] += ext[x + i];
 }
 
 // dst[x] = (rows[0][x] + rows[1][x] + … + rows[k-1][x]) × inv, added in row order.
-SL_ROW_CLONES void vsum_rows(const double* const* rows, int w,
-                                                                int k, double inv, double* dst) {
+SL_ROW_CLONES void vsum_rows(const double* const* rows, int w, int k, double inv, double* dst) {
   for (int x = 0; x < w; ++x) dst[x] = rows[0][x];
   for (int j = 1; j < k; ++j)
     for (int x = 0; x < w; ++x) dst[x] += rows[j][x];
@@ -143,8 +141,7 @@ SL_ROW_CLONES void vsum_rows(const double* const* rows, int w,
 }
 
 // Row r of raw_moments without the slope term: m1 = d, m2 = d² (d = finite_dist).
-SL_ROW_CLONES void moment_row(const float* row, int w,
-                                                                 double* m1, double* m2) {
+SL_ROW_CLONES void moment_row(const float* row, int w, double* m1, double* m2) {
   for (int x = 0; x < w; ++x) {
     const double d = double(finite_dist_bits(row[x]));
     m1[x] = d;
@@ -153,9 +150,8 @@ SL_ROW_CLONES void moment_row(const float* row, int w,
 }
 
 // Mean and variance floats of filtered moment rows (filter_moments_double's storage).
-SL_ROW_CLONES void mean_variance_row(const double* m1,
-                                                                        const double* m2, int w,
-                                                                        float* mean, float* var) {
+SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, float* mean,
+                                    float* var) {
   for (int x = 0; x < w; ++x) {
     mean[x] = float(m1[x]);
     const double v = m2[x] - m1[x] * m1[x];
@@ -166,9 +162,7 @@ SL_ROW_CLONES void mean_variance_row(const double* m1,
 // ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist (core/exp_log.h:
 // the vectorized loop gives the scalar bits). Two loops: with the float → double conversion in
 // the same loop the compiler kept it scalar.
-SL_ROW_CLONES void esm_exp_row(const float* row, int w,
-                                                                  double c, double d_min,
-                                                                  double* out) {
+SL_ROW_CLONES void esm_exp_row(const float* row, int w, double c, double d_min, double* out) {
   for (int x = 0; x < w; ++x) out[x] = double(finite_dist_bits(row[x]));
   for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
 }
@@ -185,14 +179,14 @@ SL_ROW_CLONES void warped_row(const float* row, int w, double c, double sign, do
 }
 
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
-SL_ROW_CLONES void esm_log_row(const double* filtered, int w,
-                                                                  double c, double d_min,
-                                                                  float* out) {
+SL_ROW_CLONES void esm_log_row(const double* filtered, int w, double c, double d_min,
+                              float* out) {
   for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_d(filtered[x]));
 }
 
 // Fills the r texels on each side of an extended row with its edge values (clamp to edge).
-inline void extend_row(double* ext, int w, int r) {
+template <class T>
+inline void extend_row(T* ext, int w, int r) {
   for (int i = 0; i < r; ++i) {
     ext[i] = ext[r];
     ext[size_t(w + r + i)] = ext[size_t(w + r - 1)];
@@ -289,10 +283,7 @@ SL_ROW_CLONES float row_min_dist(const float* row, int w) {
 // The clamped finite row of VSM's kernels: ext[i] = finite_dist(row[clamp(i − r)]).
 SL_ROW_CLONES void finite_ext_row(const float* row, int w, int r, float* ext) {
   for (int x = 0; x < w; ++x) ext[x + r] = finite_dist_bits(row[x]);
-  for (int i = 0; i < r; ++i) {
-    ext[i] = ext[r];
-    ext[w + r + i] = ext[w + r - 1];
-  }
+  extend_row(ext, w, r);
 }
 
 // The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per chunk of
@@ -349,6 +340,44 @@ bool with_fixed_width(int k, const F& f) {
 
 namespace {
 
+// Filtered mean and centred variance of a two-plane row maker: make_row(y, ext) fills plane 0
+// at ext and plane 1 at ext + (w + k − 1), each extended by k/2 clamped texels on both sides.
+// With `fixed` and a compiled width, the fixed-width kernels; else the runtime-k loops (their
+// oracle): the same additions in the same order either way.
+template <class MakeRow>
+void box_mean_variance(int w, int h, int k, bool fixed, const MakeRow& make_row,
+                       std::vector<float>& mean, std::vector<float>& variance) {
+  const size_t ew = size_t(w) + size_t(k) - 1;
+  const double inv = 1.0 / double(k * k);
+  auto row_of = [&](std::vector<float>& v, int y) { return v.data() + size_t(y) * size_t(w); };
+  if (fixed && with_fixed_width(k, [&](auto kc) {
+        constexpr int K = decltype(kc)::value;
+        fused_box(
+            w, h, k, 2,
+            [&](int y, double* const* dst, double* ext) {
+              make_row(y, ext);
+              hsum_k<K>(ext, w, dst[0]);
+              hsum_k<K>(ext + ew, w, dst[1]);
+            },
+            [&](int y, const double* const* win, double*) {
+              vsm_out_k<K>(win, w, inv, row_of(mean, y), row_of(variance, y));
+            });
+      }))
+    return;
+  fused_box(
+      w, h, k, 2,
+      [&](int y, double* const* dst, double* ext) {
+        make_row(y, ext);
+        hsum_row(ext, w, k, dst[0]);
+        hsum_row(ext + ew, w, k, dst[1]);
+      },
+      [&](int y, const double* const* win, double* out) {
+        vsum_rows(win, w, k, inv, out);
+        vsum_rows(win + k, w, k, inv, out + w);
+        mean_variance_row(out, out + w, w, row_of(mean, y), row_of(variance, y));
+      });
+}
+
 void moments_double(const float* dist, int w, int h, int k, bool slope_term, bool fixed_kernels,
                     std::vector<float>& mean, std::vector<float>& variance) {
   const size_t n = size_t(w) * size_t(h);
@@ -357,58 +386,48 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
+  // Without the slope term, d² is formed inside the horizontal sums from the float row.
+  if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
+        constexpr int K = decltype(kc)::value;
+        fused_box(
+            w, h, k, 2,
+            [&](int y, double* const* dst, double* ext) {
+              float* const ext_f = reinterpret_cast<float*>(ext);
+              finite_ext_row(dist + size_t(y) * size_t(w), w, r, ext_f);
+              hsum_moments_k<K>(ext_f, w, dst[0], dst[1]);
+            },
+            [&](int y, const double* const* win, double*) {
+              vsm_out_k<K>(win, w, inv, mean.data() + size_t(y) * size_t(w),
+                           variance.data() + size_t(y) * size_t(w));
+            });
+      }))
+    return;
   auto at = [&](int x, int y) {
     return double(finite_dist(dist[size_t(std::clamp(y, 0, h - 1)) * size_t(w) +
                                    size_t(std::clamp(x, 0, w - 1))]));
   };
-  auto store = [&](int y, double* const out) {
-    mean_variance_row(out, out + w, w, mean.data() + size_t(y) * size_t(w),
-                      variance.data() + size_t(y) * size_t(w));
-  };
-  const bool fixed = fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
-    constexpr int K = decltype(kc)::value;
-    fused_box(
-        w, h, k, 2,
-        [&](int y, double* const* dst, double* ext) {
-          float* const ext_f = reinterpret_cast<float*>(ext);
-          finite_ext_row(dist + size_t(y) * size_t(w), w, r, ext_f);
-          hsum_moments_k<K>(ext_f, w, dst[0], dst[1]);
-        },
-        [&](int y, const double* const* win, double*) {
-          vsm_out_k<K>(win, w, inv, mean.data() + size_t(y) * size_t(w),
-                       variance.data() + size_t(y) * size_t(w));
-        });
-  });
-  if (fixed) return;
-  // Other widths and the slope term: the runtime-k row loops.
-  fused_box(
-      w, h, k, 2,
-      [&](int y, double* const* dst, double* ext) {
+  box_mean_variance(
+      w, h, k, fixed_kernels,
+      [&](int y, double* ext) {
         if (!slope_term) {
           moment_row(dist + size_t(y) * size_t(w), w, ext + r, ext + ew + size_t(r));
           extend_row(ext, w, r);
           extend_row(ext + ew, w, r);
-        } else {
-          // raw_moments' values of row y, extended by r clamped texels on each side.
-          for (int x = -r; x < w + r; ++x) {
-            const double d = at(x, y);
-            double m2 = d * d;
-            const int xc = std::clamp(x, 0, w - 1);
-            const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
-            const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
-            m2 += double(0.25 * (dx * dx + dy * dy));
-            ext[size_t(x + r)] = d;
-            ext[ew + size_t(x + r)] = m2;
-          }
+          return;
         }
-        hsum_row(ext, w, k, dst[0]);
-        hsum_row(ext + ew, w, k, dst[1]);
+        // raw_moments' values of row y, extended by r clamped texels on each side.
+        for (int x = -r; x < w + r; ++x) {
+          const double d = at(x, y);
+          double m2 = d * d;
+          const int xc = std::clamp(x, 0, w - 1);
+          const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
+          const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
+          m2 += double(0.25 * (dx * dx + dy * dy));
+          ext[size_t(x + r)] = d;
+          ext[ew + size_t(x + r)] = m2;
+        }
       },
-      [&](int y, const double* const* win, double* out) {
-        vsum_rows(win, w, k, inv, out);
-        vsum_rows(win + k, w, k, inv, out + w);
-        store(y, out);
-      });
+      mean, variance);
 }
 
 }  // namespace
@@ -432,40 +451,14 @@ void warped_moments(const float* dist, int w, int h, int k, double c, double sig
   variance.resize(n);
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
-  const double inv = 1.0 / double(k * k);
-  auto make_row = [&](int y, double* ext) {
-    warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
-    extend_row(ext, w, r);
-    extend_row(ext + ew, w, r);
-  };
-  const bool fixed = fixed_kernels && with_fixed_width(k, [&](auto kc) {
-    constexpr int K = decltype(kc)::value;
-    fused_box(
-        w, h, k, 2,
-        [&](int y, double* const* dst, double* ext) {
-          make_row(y, ext);
-          hsum_k<K>(ext, w, dst[0]);
-          hsum_k<K>(ext + ew, w, dst[1]);
-        },
-        [&](int y, const double* const* win, double*) {
-          vsm_out_k<K>(win, w, inv, mean.data() + size_t(y) * size_t(w),
-                       variance.data() + size_t(y) * size_t(w));
-        });
-  });
-  if (fixed) return;
-  fused_box(
-      w, h, k, 2,
-      [&](int y, double* const* dst, double* ext) {
-        make_row(y, ext);
-        hsum_row(ext, w, k, dst[0]);
-        hsum_row(ext + ew, w, k, dst[1]);
+  box_mean_variance(
+      w, h, k, fixed_kernels,
+      [&](int y, double* ext) {
+        warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
+        extend_row(ext, w, r);
+        extend_row(ext + ew, w, r);
       },
-      [&](int y, const double* const* win, double* out) {
-        vsum_rows(win, w, k, inv, out);
-        vsum_rows(win + k, w, k, inv, out + w);
-        mean_variance_row(out, out + w, w, mean.data() + size_t(y) * size_t(w),
-                          variance.data() + size_t(y) * size_t(w));
-      });
+      mean, variance);
 }
 
 }  // namespace

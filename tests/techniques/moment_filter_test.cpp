@@ -106,6 +106,12 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       ASSERT_EQ(esm.size(), d.size());
       EXPECT_EQ(std::memcmp(mean.data(), mean_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
       EXPECT_EQ(std::memcmp(var.data(), var_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
+      // The slope moment (Krave) goes through the two-plane fixed kernels too.
+      std::vector<float> smean, svar, smean_o, svar_o;
+      filter_moments_double(d.data(), w, h, k, true, smean, svar);
+      filter_moments_double_oracle(d.data(), w, h, k, true, smean_o, svar_o);
+      EXPECT_EQ(std::memcmp(smean.data(), smean_o.data(), d.size() * 4), 0) << "slope k " << k;
+      EXPECT_EQ(std::memcmp(svar.data(), svar_o.data(), d.size() * 4), 0) << "slope k " << k;
       EXPECT_EQ(std::memcmp(esm.data(), esm_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
       for (const double sign : {1.0, -1.0}) {
         std::vector<float> wm, wv, wm_o, wv_o;
