@@ -2,7 +2,6 @@
 // with its error against Embree hard shadows and its expected bound. Exit code 1 if a bound fails.
 #include <cstdio>
 
-#include "core/parallel.h"
 #include "experiments/cli.h"
 #include "experiments/stability_cases.h"
 
