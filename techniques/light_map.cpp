@@ -131,7 +131,8 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
 const std::vector<const MapFilterOps*>& map_filters() {
   static const std::vector<const MapFilterOps*> rows = {&kDepthCompare, &kVarianceMap,
                                                         &kExponentialMap,
-                                                        &kExponentialVarianceMap};
+                                                        &kExponentialVarianceMap,
+                                                        &kMomentShadowMap};
   return rows;
 }
 

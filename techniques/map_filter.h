@@ -42,6 +42,7 @@ extern const MapFilterOps kDepthCompare;     // sm:  depth compare with PCF
 extern const MapFilterOps kVarianceMap;      // vsm: variance shadow map
 extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
 extern const MapFilterOps kExponentialVarianceMap;  // evsm: exponential variance shadow map
+extern const MapFilterOps kMomentShadowMap;  // msm: moment shadow map
 
 // Every filter, in registry order.
 const std::vector<const MapFilterOps*>& map_filters();

@@ -10,6 +10,7 @@
 // depth (stored precision, techniques/depth_quantize.h). Depth compare: pcf, seams. Filters:
 // blur. VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment, fp32. ESM: c.
 // EVSM (evsm: cevsm, tevsm, pevsm): moments, c_pos, c_neg, min_variance, bleed.
+// MSM (msm: cmsm, tmsm, pmsm): variant, alpha, quantize16.
 #include <string>
 
 #include "techniques/depth_quantize.h"
@@ -18,7 +19,7 @@
 
 namespace shadowlab {
 
-enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance };
+enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment };
 
 // How taps near a face's edge read their texels.
 //   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
@@ -62,6 +63,16 @@ struct EvsmKeys {
   double bleed = 0.0;          // light-bleeding reduction, as for vsm
 };
 
+// Keys of the moment filter (msm; techniques/moment_bound.h). The moments are filtered in
+// double and stored as 4 floats per texel, or (quantize16) through Peters & Klein's optimized
+// 16-bit quantization, whose coarser rounding needs the larger default α.
+struct MsmKeys {
+  bool hausdorff = false;   // variant=hamburger (support ℝ) | hausdorff (support [0, 1])
+  bool quantize16 = false;  // store 4 × 16 bits (the optimized quantization) instead of 4 × fp32
+  double alpha = 3e-6;      // moment bias toward (½, ½, ½, ½); default 3e-6 (fp32), 3e-5 with
+                            // quantize16
+};
+
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
   MapFilter filter = MapFilter::Depth;
@@ -82,6 +93,7 @@ struct MapParams {
   VsmKeys vsm;            // the variance filter's own keys (techniques/variance_map.cpp)
   EsmKeys esm;            // the exponential filter's own keys (techniques/exponential_map.cpp)
   EvsmKeys evsm;          // the exponential variance filter's (techniques/exponential_variance_map.cpp)
+  MsmKeys msm;            // the moment filter's (techniques/moment_shadow_map.cpp)
 };
 
 // The defaults of a layout × filter before any key is read (bias and slope are 0 for the

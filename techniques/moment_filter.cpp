@@ -178,6 +178,23 @@ SL_ROW_CLONES void warped_row(const float* row, int w, double c, double sign, do
   }
 }
 
+// MSM's power moments of one row: p[0..3][x] = d, d², d³ = d²·d, d⁴ = d²·d² (d = finite_dist),
+// each plane at its own offset `stride` from the last.
+SL_ROW_CLONES void power_row(const float* row, int w, size_t stride, double* p) {
+  for (int x = 0; x < w; ++x) p[x] = double(finite_dist_bits(row[x]));
+  for (int x = 0; x < w; ++x) {
+    const double d = p[x], d2 = d * d;
+    p[stride + size_t(x)] = d2;
+    p[2 * stride + size_t(x)] = d2 * d;
+    p[3 * stride + size_t(x)] = d2 * d2;
+  }
+}
+
+// A filtered row's floats: out[x] = float(m[x]).
+SL_ROW_CLONES void float_row(const double* m, int w, float* out) {
+  for (int x = 0; x < w; ++x) out[x] = float(m[x]);
+}
+
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
 SL_ROW_CLONES void esm_log_row(const double* filtered, int w, double c, double d_min,
                               float* out) {
@@ -259,6 +276,19 @@ SL_ROW_CLONES void esm_out_k(const double* const* rows, int w, double inv, doubl
     for (int j = 1; j < K; ++j) a += r[j][x];
     a *= inv;
     out[x] = float(c * d_min + log_d(a));
+  }
+}
+
+// MSM: one plane's K rows summed, × inv, as float.
+template <int K>
+SL_ROW_CLONES void mean_out_k(const double* const* rows, int w, double inv, float* out) {
+  const double* r[K];
+  for (int j = 0; j < K; ++j) r[j] = rows[j];
+  for (int x = 0; x < w; ++x) {
+    double a = r[0][x];
+    for (int j = 1; j < K; ++j) a += r[j][x];
+    a *= inv;
+    out[x] = float(a);
   }
 }
 
@@ -472,6 +502,58 @@ void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double
                                   double sign, std::vector<float>& mean,
                                   std::vector<float>& variance) {
   warped_moments(dist, w, h, k, c, sign, false, mean, variance);
+}
+
+namespace {
+
+void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
+                   std::vector<float>* out) {
+  const size_t n = size_t(w) * size_t(h);
+  for (int c = 0; c < 4; ++c) out[c].resize(n);
+  const int r = k / 2;
+  const size_t ew = size_t(w) + size_t(k) - 1;
+  const double inv = 1.0 / double(k * k);
+  auto make_row = [&](int y, double* ext) {
+    power_row(dist + size_t(y) * size_t(w), w, ew, ext + r);
+    for (int c = 0; c < 4; ++c) extend_row(ext + size_t(c) * ew, w, r);
+  };
+  auto row_of = [&](int c, int y) { return out[c].data() + size_t(y) * size_t(w); };
+  if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
+        constexpr int K = decltype(kc)::value;
+        fused_box(
+            w, h, k, 4,
+            [&](int y, double* const* dst, double* ext) {
+              make_row(y, ext);
+              for (int c = 0; c < 4; ++c) hsum_k<K>(ext + size_t(c) * ew, w, dst[c]);
+            },
+            [&](int y, const double* const* win, double*) {
+              for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, w, inv, row_of(c, y));
+            });
+      }))
+    return;
+  fused_box(
+      w, h, k, 4,
+      [&](int y, double* const* dst, double* ext) {
+        make_row(y, ext);
+        for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, w, k, dst[c]);
+      },
+      [&](int y, const double* const* win, double* m) {
+        for (int c = 0; c < 4; ++c) {
+          vsum_rows(win + c * k, w, k, inv, m);
+          float_row(m, w, row_of(c, y));
+        }
+      });
+}
+
+}  // namespace
+
+void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out) {
+  power_moments(dist, w, h, k, true, out);
+}
+
+void filter_power_moments_oracle(const float* dist, int w, int h, int k,
+                                 std::vector<float>* out) {
+  power_moments(dist, w, h, k, false, out);
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,

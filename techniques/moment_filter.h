@@ -44,6 +44,10 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                            std::vector<float>& mean, std::vector<float>& variance);
 
+// MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
+// "nothing seen" as 1), box-filtered in double and stored as floats in out[0..3].
+void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out);
+
 // The filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
 // runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the
@@ -55,5 +59,8 @@ void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
 void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,
                                   double sign, std::vector<float>& mean,
                                   std::vector<float>& variance);
+
+void filter_power_moments_oracle(const float* dist, int w, int h, int k,
+                                 std::vector<float>* out);
 
 }  // namespace shadowlab

@@ -136,7 +136,7 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
   }
 }
 
-// The filtering techniques' 8-lane batches (VSM, ESM, EVSM: gathers, then the arithmetic in
+// The filtering techniques' 8-lane batches (VSM, ESM, EVSM, MSM: gathers, then the arithmetic in
 // AVX2) against their scalar oracle on random maps, blurred by their own filter: bit for bit.
 TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
@@ -145,19 +145,28 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     MapFilter filter;
     int moments;
     double bleed;
+    MsmKeys msm = {};
   };
   for (const Config& cfg : {Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 2, 0.0},
                             Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 4, 0.2},
                             Config{FaceLayoutKind::Tetrahedron, MapFilter::ExponentialVariance, 4, 0.0},
                             Config{FaceLayoutKind::Tetrahedron, MapFilter::ExponentialVariance, 2, 0.3},
                             Config{FaceLayoutKind::Cube, MapFilter::Variance, 2, 0.2},
-                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Exponential, 2, 0.0}}) {
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Exponential, 2, 0.0},
+                            Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Moment, 2, 0.0,
+                                   MsmKeys{true, false, 3e-6}},
+                            Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0,
+                                   MsmKeys{true, true, 3e-5}},
+                            Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0,
+                                   MsmKeys{false, false, 0.0}}}) {
     const Case c = random_case(4096, 5, false);
     MapParams p = default_map_params(cfg.layout, cfg.filter);
     p.res = 64;
     p.evsm.moments = cfg.moments;
     p.evsm.bleed = p.vsm.bleed = cfg.bleed;
     p.evsm.c_pos = 20.0;  // the random depths' spread: bounds strictly inside (0, 1)
+    p.msm = cfg.msm;
     LightMap map = threshold_map(c, p, 13);
     filter_light_map(p, map);
     ImageF scalar_mask, simd_mask;
@@ -166,7 +175,8 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     lookup_with("0", c, p, map, simd_mask, simd_texels);
     const std::string what = "filter " + std::to_string(int(cfg.filter)) + " layout " +
                              std::to_string(int(cfg.layout)) + " moments " +
-                             std::to_string(cfg.moments);
+                             std::to_string(cfg.moments) + " msm " +
+                             std::to_string(cfg.msm.hausdorff) + std::to_string(cfg.msm.quantize16);
     EXPECT_EQ(std::memcmp(scalar_mask.data.data(), simd_mask.data.data(), scalar_mask.data.size() * 4), 0) << what;
     // Not vacuous: both branches of the bound (receiver in front: 1; behind: a fraction) occur
     // on many receivers (measured 64-94 fractions of 4096 on the sparsest configurations).

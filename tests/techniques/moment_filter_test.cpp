@@ -113,6 +113,11 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       EXPECT_EQ(std::memcmp(smean.data(), smean_o.data(), d.size() * 4), 0) << "slope k " << k;
       EXPECT_EQ(std::memcmp(svar.data(), svar_o.data(), d.size() * 4), 0) << "slope k " << k;
       EXPECT_EQ(std::memcmp(esm.data(), esm_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
+      std::vector<float> pm[4], pm_o[4];
+      filter_power_moments(d.data(), w, h, k, pm);
+      filter_power_moments_oracle(d.data(), w, h, k, pm_o);
+      for (int c = 0; c < 4; ++c)
+        EXPECT_EQ(std::memcmp(pm[c].data(), pm_o[c].data(), d.size() * 4), 0) << "msm " << c << " k " << k;
       for (const double sign : {1.0, -1.0}) {
         std::vector<float> wm, wv, wm_o, wv_o;
         filter_warped_moments(d.data(), w, h, k, 40.0, sign, wm, wv);
@@ -121,6 +126,35 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
         EXPECT_EQ(std::memcmp(wv.data(), wv_o.data(), d.size() * 4), 0) << "evsm k " << k;
       }
     }
+  }
+}
+
+// MSM's four power moments are the window means of d, d², d³, d⁴ (long double brute force,
+// "nothing seen" as 1), each within one float rounding (relative 6e-8; bound 1.2e-7 + 1e-12).
+TEST(MomentFilter, PowerMomentsAreTheWindowMeans) {
+  const int w = 23, h = 17;
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(0.0f, 1.1f);
+  std::vector<float> d(size_t(w * h));
+  for (float& v : d) v = u(rng);
+  d[7] = std::numeric_limits<float>::infinity();
+  for (const int k : {3, 11}) {
+    std::vector<float> pm[4];
+    filter_power_moments(d.data(), w, h, k, pm);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        long double m[4] = {0.0L, 0.0L, 0.0L, 0.0L};
+        for (int j = -k / 2; j <= k / 2; ++j)
+          for (int i = -k / 2; i <= k / 2; ++i) {
+            const float v = d[size_t(std::clamp(y + j, 0, h - 1)) * size_t(w) +
+                              size_t(std::clamp(x + i, 0, w - 1))];
+            const long double t = v < 1.0f ? v : 1.0L;
+            for (int c = 0; c < 4; ++c) m[c] += std::pow(t, c + 1) / (k * k);
+          }
+        for (int c = 0; c < 4; ++c)
+          ASSERT_NEAR(pm[c][size_t(y * w + x)], double(m[c]), 1.2e-7 * double(m[c]) + 1e-12)
+              << "k " << k << " moment " << c + 1 << " at " << x << "," << y;
+      }
   }
 }
 

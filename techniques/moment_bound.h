@@ -1,0 +1,172 @@
+#pragma once
+// The moment shadow map's reconstruction (Peters & Klein 2015, "Moment shadow mapping",
+// I3D; docs/design.md §6, MSM): from the filtered power moments m = (E[d], E[d²], E[d³], E[d⁴])
+// of the occluders' normalised distances d in [0, 1], the sharpest lower bound on the fraction
+// of them strictly in front of a receiver at depth z (the shadow intensity G; visibility 1 − G).
+//
+//   1. Bias: b = (1 − α)·m + α·(½, ½, ½, ½), which keeps the Hankel matrix
+//      B = [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]] positive definite when rounding (fp32 or
+//      16-bit storage) or a single depth in the footprint makes it singular.
+//   2. Solve B·c = (1, z, z²) by B = L·D·Lᵀ (Cholesky without square roots).
+//   3. The roots z2 <= z3 of c1 + c2·x + c3·x² are, with z, the atoms of the distribution with
+//      moments b that has an atom at z (its canonical representation).
+//   4. Hamburger (support ℝ): G = 0 when z <= z2; the weight of z2 when z2 < z <= z3; one minus
+//      the weight of z when z > z3 (each weight by Lagrange interpolation on the three atoms).
+//   5. Hausdorff (support [0, 1]): as Hamburger when 0 <= z2 and z3 <= 1; otherwise the
+//      representation with atoms 0, z, u, 1, whose free atom u makes E[x(x − 1)(x − z)(x − u)]
+//      vanish: G = w0 + (u < z ? w_u : 0).
+// A G that is not a number (a singular B: α = 0 over a footprint of one depth) counts as 0, as
+// a GPU's saturate() does: the pixel is lit. α = 0 is allowed so that this leak can be measured.
+//
+// The scalar functions are the oracle; msm_intensity4 computes 4 lanes with the same
+// operations in the same order (selects as compare-and-blend), so it gives their bits.
+#include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace shadowlab {
+
+// Solution c of B·c = (1, z, z²) for biased moments b[0..3] = (b1, b2, b3, b4).
+struct HankelSolution {
+  double c1, c2, c3;
+};
+
+inline HankelSolution hankel_solve(const double b[4], double z) {
+  // B = L·D·Lᵀ with L = [[1, 0, 0], [b1, 1, 0], [b2, l32, 1]], D = diag(1, d22, d33).
+  const double d22 = b[1] - b[0] * b[0];
+  const double e32 = b[2] - b[0] * b[1];  // l32·d22
+  const double l32 = e32 / d22;
+  const double d33 = (b[3] - b[1] * b[1]) - l32 * e32;
+  // Forward (L·y = (1, z, z²)), scale (D), backward (Lᵀ·c = y).
+  const double y2 = z - b[0];
+  const double y3 = (z * z - b[1]) - l32 * y2;
+  const double c3 = y3 / d33;
+  const double c2 = y2 / d22 - l32 * c3;
+  const double c1 = (1.0 - b[0] * c2) - b[1] * c3;
+  return {c1, c2, c3};
+}
+
+// The biased moments of step 1.
+inline void msm_bias(const double m[4], double alpha, double b[4]) {
+  const double keep = 1.0 - alpha, pull = 0.5 * alpha;
+  for (int i = 0; i < 4; ++i) b[i] = m[i] * keep + pull;
+}
+
+// Shadow intensity G in [0, 1] (visibility is 1 − G) for moments m, receiver depth z.
+inline double msm_intensity(const double m[4], double z, double alpha, bool hausdorff) {
+  double b[4];
+  msm_bias(m, alpha, b);
+  const HankelSolution c = hankel_solve(b, z);
+  const double p = c.c2 / c.c3, q = c.c1 / c.c3;
+  const double r = std::sqrt(p * p * 0.25 - q);
+  const double z2 = -0.5 * p - r, z3 = -0.5 * p + r;
+  // Weight of z2 (z between the roots) and one minus the weight of z (z beyond both).
+  const double g_mid = ((z * z3 - b[0] * (z + z3)) + b[1]) / ((z3 - z2) * (z - z2));
+  const double g_far = 1.0 - ((z2 * z3 - b[0] * (z2 + z3)) + b[1]) / ((z - z2) * (z - z3));
+  double g = z <= z2 ? 0.0 : (z <= z3 ? g_mid : g_far);
+  if (hausdorff && (z2 < 0.0 || z3 > 1.0)) {
+    // Atoms 0, z, u, 1: E[x(x − 1)(x − z)(x − u)] = 0 fixes u; w0 and w_u by Lagrange.
+    const double zp1 = z + 1.0;
+    const double u = ((b[3] - zp1 * b[2]) + z * b[1]) / ((b[2] - zp1 * b[1]) + z * b[0]);
+    const double zu = z * u;
+    const double w0 = (((b[2] - (zp1 + u) * b[1]) + ((z + u) + zu) * b[0]) - zu) / -zu;
+    const double wu = ((b[2] - zp1 * b[1]) + z * b[0]) / ((u * (u - 1.0)) * (u - z));
+    g = u < z ? w0 + wu : w0;
+  }
+  return g > 0.0 ? (g < 1.0 ? g : 1.0) : 0.0;  // NaN -> 0
+}
+
+// The optimized 16-bit quantization (Peters & Klein 2015, §4.3): an affine map of the four
+// moments of any depth in [0, 1] into [0, 1]⁴ whose rounding to 16 bits hurts the
+// reconstruction least; q = m·Θ + (0.035955884801, 0, 0, 0) (m a row vector), and its
+// published inverse.
+inline constexpr double kMsmTheta[4][4] = {
+    {-2.07224649, 13.7948857237, 0.105877704, 9.7924062118},
+    {32.23703778, -59.4683975703, -1.9077466311, -33.7652110555},
+    {-68.571074599, 82.0359750338, 9.3496555107, 47.9456096605},
+    {39.3703274134, -35.364903257, -6.6543490743, -23.9728048165}};
+inline constexpr double kMsmInverse[4][4] = {
+    {0.2227744146, 0.1549679261, 0.1451988946, 0.163127443},
+    {0.0771972861, 0.1394629426, 0.2120202157, 0.2591432266},
+    {0.7926986636, 0.7963415838, 0.7258694464, 0.6539092497},
+    {0.0319417555, -0.1722823173, -0.2758014811, -0.3376131734}};
+inline constexpr double kMsmOffset = 0.035955884801;
+
+inline void msm_encode16(const double m[4], double q[4]) {
+  for (int j = 0; j < 4; ++j)
+    q[j] = ((m[0] * kMsmTheta[0][j] + m[1] * kMsmTheta[1][j]) + m[2] * kMsmTheta[2][j]) +
+           m[3] * kMsmTheta[3][j];
+  q[0] += kMsmOffset;
+}
+
+inline void msm_decode16(const double q_in[4], double m[4]) {
+  const double q[4] = {q_in[0] - kMsmOffset, q_in[1], q_in[2], q_in[3]};
+  for (int j = 0; j < 4; ++j)
+    m[j] = ((q[0] * kMsmInverse[0][j] + q[1] * kMsmInverse[1][j]) + q[2] * kMsmInverse[2][j]) +
+           q[3] * kMsmInverse[3][j];
+}
+
+#if defined(__x86_64__)
+#define SL_MSM_AVX2 __attribute__((target("avx2")))
+namespace msm_simd {
+SL_MSM_AVX2 inline __m256d mul(__m256d x, __m256d y) { return _mm256_mul_pd(x, y); }
+SL_MSM_AVX2 inline __m256d add(__m256d x, __m256d y) { return _mm256_add_pd(x, y); }
+SL_MSM_AVX2 inline __m256d sub(__m256d x, __m256d y) { return _mm256_sub_pd(x, y); }
+SL_MSM_AVX2 inline __m256d div(__m256d x, __m256d y) { return _mm256_div_pd(x, y); }
+}  // namespace msm_simd
+
+// msm_intensity for 4 lanes (m[i]: moment i + 1 of each lane).
+SL_MSM_AVX2 inline __m256d msm_intensity4(const __m256d m[4], __m256d z, double alpha,
+                                          bool hausdorff) {
+  using namespace msm_simd;
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d keep = _mm256_set1_pd(1.0 - alpha), pull = _mm256_set1_pd(0.5 * alpha);
+  __m256d b[4];
+  for (int i = 0; i < 4; ++i) b[i] = _mm256_add_pd(_mm256_mul_pd(m[i], keep), pull);
+  const __m256d d22 = sub(b[1], mul(b[0], b[0]));
+  const __m256d e32 = sub(b[2], mul(b[0], b[1]));
+  const __m256d l32 = div(e32, d22);
+  const __m256d d33 = sub(sub(b[3], mul(b[1], b[1])), mul(l32, e32));
+  const __m256d y2 = sub(z, b[0]);
+  const __m256d y3 = sub(sub(mul(z, z), b[1]), mul(l32, y2));
+  const __m256d c3 = div(y3, d33);
+  const __m256d c2 = sub(div(y2, d22), mul(l32, c3));
+  const __m256d c1 = sub(sub(one, mul(b[0], c2)), mul(b[1], c3));
+  const __m256d p = div(c2, c3), q = div(c1, c3);
+  const __m256d r = _mm256_sqrt_pd(sub(mul(mul(p, p), _mm256_set1_pd(0.25)), q));
+  const __m256d hp = mul(_mm256_set1_pd(-0.5), p);
+  const __m256d z2 = sub(hp, r), z3 = add(hp, r);
+  const __m256d g_mid =
+      div(add(sub(mul(z, z3), mul(b[0], add(z, z3))), b[1]), mul(sub(z3, z2), sub(z, z2)));
+  const __m256d g_far = sub(
+      one, div(add(sub(mul(z2, z3), mul(b[0], add(z2, z3))), b[1]), mul(sub(z, z2), sub(z, z3))));
+  __m256d g = _mm256_blendv_pd(g_far, g_mid, _mm256_cmp_pd(z, z3, _CMP_LE_OQ));
+  g = _mm256_blendv_pd(g, zero, _mm256_cmp_pd(z, z2, _CMP_LE_OQ));
+  if (hausdorff) {
+    const __m256d out = _mm256_or_pd(_mm256_cmp_pd(z2, zero, _CMP_LT_OQ),
+                                     _mm256_cmp_pd(z3, one, _CMP_GT_OQ));
+    if (_mm256_movemask_pd(out) != 0) {
+      const __m256d zp1 = add(z, one);
+      const __m256d u = div(add(sub(b[3], mul(zp1, b[2])), mul(z, b[1])),
+                            add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])));
+      const __m256d zu = mul(z, u);
+      const __m256d w0 =
+          div(sub(add(sub(b[2], mul(add(zp1, u), b[1])), mul(add(add(z, u), zu), b[0])), zu),
+              _mm256_xor_pd(zu, _mm256_set1_pd(-0.0)));
+      const __m256d wu = div(add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])),
+                             mul(mul(u, sub(u, one)), sub(u, z)));
+      const __m256d g4 =
+          _mm256_blendv_pd(w0, add(w0, wu), _mm256_cmp_pd(u, z, _CMP_LT_OQ));
+      g = _mm256_blendv_pd(g, g4, out);
+    }
+  }
+  // g > 0 ? (g < 1 ? g : 1) : 0, NaN -> 0.
+  const __m256d positive = _mm256_cmp_pd(g, zero, _CMP_GT_OQ);
+  g = _mm256_blendv_pd(one, g, _mm256_cmp_pd(g, one, _CMP_LT_OQ));
+  return _mm256_blendv_pd(zero, g, positive);
+}
+#undef SL_MSM_AVX2
+#endif
+
+}  // namespace shadowlab

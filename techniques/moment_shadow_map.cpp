@@ -1,0 +1,192 @@
+// The moment filter ("msm": cmsm, tmsm, pmsm; Peters & Klein 2015): the power moments d, d²,
+// d³, d⁴ of the stored normalised distance, box-filtered in double (techniques/moment_filter.h)
+// and stored as 4 floats per texel, or through the optimized 16-bit quantization; looked up
+// bilinearly (the moments mix linearly, so the 4 taps' weighted sum is the footprint's
+// moments) and turned into the sharpest lower bound on the occluded fraction
+// (techniques/moment_bound.h: Hamburger or Hausdorff). docs/design.md §6, MSM.
+#include <algorithm>
+#include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+#include <fmt/format.h>
+
+#include "core/parallel.h"
+#include "techniques/chebyshev.h"
+#include "techniques/map_filter.h"
+#include "techniques/map_lookup.h"
+#include "techniques/moment_bound.h"
+
+namespace shadowlab {
+namespace {
+
+void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
+  read_blur(r, name, flag, p);
+  MsmKeys& m = p.msm;
+  m.hausdorff = r.get_choice("variant", m.hausdorff ? "hausdorff" : "hamburger",
+                             {"hamburger", "hausdorff"}) == "hausdorff";
+  m.quantize16 = r.get_bool("quantize16", m.quantize16);
+  m.alpha = r.get_double("alpha", m.quantize16 ? 3e-5 : m.alpha, 0.0, 0.5);
+}
+
+std::string keys_text(const MapParams& p) {
+  return fmt::format("blur={},variant={},alpha={:g},quantize16=0", p.blur,
+                     p.msm.hausdorff ? "hausdorff" : "hamburger", p.msm.alpha);
+}
+
+// Texels [0, n) of the four planes through the 16-bit store: each texel's moments encoded
+// (msm_encode16), clamped to [0, 1] and rounded to the nearest multiple of 1/65535 (a UNORM16
+// channel, ties up), kept as the float of that value. Compiled for AVX-512, AVX2 and baseline
+// (floor is one instruction from SSE4.1 on; exact, so every clone gives the same bits).
+__attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(size_t n, float* __restrict m0, float* __restrict m1, float* __restrict m2,
+                float* __restrict m3) {
+  for (size_t i = 0; i < n; ++i) {
+    const double m[4] = {m0[i], m1[i], m2[i], m3[i]};
+    double q[4];
+    msm_encode16(m, q);
+    float r[4];
+    for (int c = 0; c < 4; ++c) {
+      const double v = q[c] < 0.0 ? 0.0 : (q[c] > 1.0 ? 1.0 : q[c]);
+      r[c] = float(std::floor(v * 65535.0 + 0.5) / 65535.0);
+    }
+    m0[i] = r[0];
+    m1[i] = r[1];
+    m2[i] = r[2];
+    m3[i] = r[3];
+  }
+}
+
+void filter(const MapParams& p, LightMap& map) {
+  for (size_t f = 0; f < map.layout.faces.size(); ++f) {
+    if (!map.dist.rendered[f]) continue;
+    const LightFace& face = map.layout.faces[f];
+    std::vector<float>* planes[4] = {&map.a[f], &map.b[f], &map.c[f], &map.d[f]};
+    std::vector<float> out[4];
+    for (int i = 0; i < 4; ++i) out[i].swap(*planes[i]);  // reuse the planes' memory
+    filter_power_moments(map.dist.distance[f].data(), face.width, face.height, p.blur, out);
+    for (int i = 0; i < 4; ++i) out[i].swap(*planes[i]);
+    if (!p.msm.quantize16) continue;
+    const size_t n = map.a[f].size();
+    parallel_for_chunks(n, 16384, [&](size_t b, size_t e) {
+      quantize16(e - b, &map.a[f][b], &map.b[f][b], &map.c[f][b], &map.d[f][b]);
+    });
+  }
+}
+
+struct MsmConsts {
+  double alpha;
+  bool hausdorff, quantize16;
+};
+
+// Visibility from the 4 bilinear taps of the 4 planes (P[plane][tap]).
+float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, float depth) {
+  double w[4];
+  bilinear_weights(fx, fy, w);
+  double m[4];
+  for (int j = 0; j < 4; ++j) {
+    m[j] = 0.0;
+    for (int i = 0; i < 4; ++i) m[j] += w[i] * P[j][i];
+  }
+  if (k.quantize16) {
+    const double q[4] = {m[0], m[1], m[2], m[3]};
+    msm_decode16(q, m);
+  }
+  return float(1.0 - msm_intensity(m, double(depth), k.alpha, k.hausdorff));
+}
+
+#if defined(__x86_64__)
+#define SL_AVX2 __attribute__((target("avx2")))
+// msm_value for the 8 lanes of a batch, in two halves of 4 doubles: its operations in its order.
+SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const float* fx,
+                            const float* fy, const float* depth, float* out) {
+  for (int half = 0; half < 2; ++half) {
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
+    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
+    const __m256d ox = _mm256_sub_pd(one, vx), oy = _mm256_sub_pd(one, vy);
+    const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(vx, oy), _mm256_mul_pd(ox, vy),
+                          _mm256_mul_pd(vx, vy)};
+    __m256d m[4];
+    for (int j = 0; j < 4; ++j) {
+      m[j] = _mm256_setzero_pd();
+      for (int i = 0; i < 4; ++i)
+        m[j] = _mm256_add_pd(
+            m[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[j][i] + 4 * half))));
+    }
+    if (k.quantize16) {
+      // msm_decode16's operations, lane by lane.
+      const __m256d q[4] = {_mm256_sub_pd(m[0], _mm256_set1_pd(kMsmOffset)), m[1], m[2],
+                            m[3]};
+      for (int j = 0; j < 4; ++j) {
+        __m256d s = _mm256_mul_pd(q[0], _mm256_set1_pd(kMsmInverse[0][j]));
+        for (int i = 1; i < 4; ++i)
+          s = _mm256_add_pd(s, _mm256_mul_pd(q[i], _mm256_set1_pd(kMsmInverse[i][j])));
+        m[j] = s;
+      }
+    }
+    const __m256d z = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
+    const __m256d g = msm_intensity4(m, z, k.alpha, k.hausdorff);
+    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(_mm256_sub_pd(one, g)));
+  }
+}
+#endif
+
+// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then msm_value's
+// arithmetic in AVX2 double. Used only where the AVX2 kernels exist.
+struct MsmBatch {
+  static constexpr bool kEnabled = true;
+  MsmConsts k;
+  Bilinear8Fn bilinear8;
+  PlaneGather planes[4];  // a, b, c, d: moments 1 to 4
+  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+    alignas(32) float v[4][4][8], fx[8], fy[8];
+    bilinear8(c, r, planes, 4, v, fx, fy);
+#if defined(__x86_64__)
+    msm_batch_avx2(k, v, fx, fy, r.depth, out);
+#endif
+  }
+};
+
+void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
+            ImageF& mask, ImageU32* texels) {
+  const FaceLayout& L = map.layout;
+  const MsmConsts k{p.msm.alpha, p.msm.hausdorff, p.msm.quantize16};
+  auto visibility = [&](const Receiver& r) {
+    const size_t fi = size_t(r.face);
+    const LightFace& f = L.faces[fi];
+    const Bilinear bl = bilinear_taps(r.st, f.width, f.height);
+    size_t idx[4];
+    bilinear_indices(bl, f.width, idx);
+    float P[4][4];
+    for (int i = 0; i < 4; ++i) {
+      P[0][i] = map.a[fi][idx[i]];
+      P[1][i] = map.b[fi][idx[i]];
+      P[2][i] = map.c[fi][idx[i]];
+      P[3][i] = map.d[fi][idx[i]];
+    }
+    return msm_value(k, P, bl.fx, bl.fy, r.depth);
+  };
+  MsmBatch batch{k, bilinear8_simd(),
+                 {plane_gather(map.a), plane_gather(map.b), plane_gather(map.c),
+                  plane_gather(map.d)}};
+  bool gathers = batch.bilinear8 != nullptr;
+  for (const PlaneGather& pg : batch.planes) gathers = gathers && pg.ok;
+  if (gathers)
+    lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
+  else
+    lookup_pixels(scene, g, p, map, mask, texels, visibility);
+}
+
+uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear
+// 4 fp32 moments = 4 float planes; 4 × 16 bits = the bytes of 2.
+uint64_t stored_planes(const MapParams& p) { return p.msm.quantize16 ? 2 : 4; }
+uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
+
+}  // namespace
+
+const MapFilterOps kMomentShadowMap = {
+    "msm",      "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
+    parse_keys, keys_text, filter, lookup, taps_per_lookup, tap_bytes, stored_planes};
+
+}  // namespace shadowlab
