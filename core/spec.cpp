@@ -109,6 +109,14 @@ std::string SpecReader::get_choice(const std::string& key, const std::string& fa
                               it->second + "'");
 }
 
+bool SpecReader::has(const std::string& key) const { return spec_.params.count(key) > 0; }
+
+bool SpecReader::is_word(const std::string& key, const std::string& word) {
+  used_.push_back(key);
+  const auto it = spec_.params.find(key);
+  return it != spec_.params.end() && it->second == word;
+}
+
 void SpecReader::reject_unknown() const {
   for (const auto& [k, v] : spec_.params)
     if (std::find(used_.begin(), used_.end(), k) == used_.end()) {

@@ -36,6 +36,10 @@ class SpecReader {
   // One of `choices` (exact text), else InputError listing them.
   std::string get_choice(const std::string& key, const std::string& fallback,
                          const std::vector<std::string>& choices);
+  // True when the spec gives `key` (whatever its value; does not mark it used).
+  bool has(const std::string& key) const;
+  // True when `key` is given as exactly `word` (e.g. "light_size=light"); marks it used.
+  bool is_word(const std::string& key, const std::string& word);
   void reject_unknown() const;
 
  private:

@@ -119,7 +119,7 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
   // in shadowlab's one-line form.
   app.allow_extras(true);
   app.get_formatter()->column_width(28);
-  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm/evsm/msm; spec NAME:key=value,...):\n" +
+  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm/evsm/msm/pcss; spec NAME:key=value,...):\n" +
              technique_list_text());
   return cl;
 }

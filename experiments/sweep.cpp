@@ -199,6 +199,7 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
        "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
+    // Label and spec are quoted: a spec's keys are comma-separated (neither holds a quote).
     // Empty fields where there is no value: the times of a cached reference, the performance
     // score of a row without timings (the reference).
     std::string shadow, map, lookup, perf;
@@ -209,7 +210,7 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
     }
     if (m.has_performance) perf = fmt::format("{:.6f}", m.performance);
     f << fmt::format(
-             "{},\"{}\",{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},"
+             "\"{}\",\"{}\",{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},"
              "{},{},{},{},{:.6f},{},",
              row.label, row.spec, row.res, m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
              m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup, perf, m.total,

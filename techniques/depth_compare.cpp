@@ -25,16 +25,22 @@ void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapPar
   }
   // Poisson taps rotate freely, so they read through the guard band (the cube's cross-face
   // lookup serves the grid's texel rows).
-  const std::string seams = r.get_choice(
-      "seams", p.seams == SeamMode::Cross && !poisson ? "cross" : "guard", {"guard", "cross"});
+  // rpdb's plane gradient lives in the receiver's own face: it takes the guard band too.
+  read_rpdb(r, name, flag, p);
+  const std::string seams =
+      r.get_choice("seams", p.seams == SeamMode::Cross && !poisson && !p.rpdb ? "cross" : "guard",
+                   {"guard", "cross"});
   if (poisson && seams == "cross")
     throw InputError(flag, name + ": 'seams=cross' serves the grid PCF only; Poisson taps use the guard band");
+  if (p.rpdb && seams == "cross")
+    throw InputError(flag, name + ": 'rpdb=1' needs the guard band ('seams=guard'): the plane "
+                                  "gradient is in the receiver's own face");
   p.seams = seams == "cross" ? SeamMode::Cross : SeamMode::Guard;
 }
 
 std::string keys_text(const MapParams& p) {
   return std::string("pcf=1,seams=") + (p.seams == SeamMode::Cross ? "cross" : "guard") +
-         ",pcf_kind=grid,taps=" + std::to_string(p.taps);
+         ",pcf_kind=grid,taps=" + std::to_string(p.taps) + ",rpdb=0";
 }
 
 // Rotated Poisson PCF at receiver r: taps at st + (pcf/2)·R(θ)·q_k, θ from the pixel's counter-
@@ -48,8 +54,10 @@ float poisson_visibility(const LightFace& f, const float* dist, const Receiver& 
   for (const vec2& q : disk.points) {
     const vec2 st(r.st.x + radius * (c * q.x - s * q.y), r.st.y + radius * (s * q.x + c * q.y));
     const Bilinear b = bilinear_taps(st, f.width, f.height);
+    // rpdb: the receiver plane's depth at each texel's centre (grad is 0 without it).
     auto at = [&](int x, int y) {
-      return r.depth <= dist[size_t(y) * size_t(f.width) + size_t(x)] ? 1.0f : 0.0f;
+      const float depth = r.depth + glm::dot(r.grad, vec2(float(x) + 0.5f, float(y) + 0.5f) - r.st);
+      return depth <= dist[size_t(y) * size_t(f.width) + size_t(x)] ? 1.0f : 0.0f;
     };
     lit += (1.0f - b.fy) * ((1.0f - b.fx) * at(b.x0, b.y0) + b.fx * at(b.x1, b.y0)) +
            b.fy * ((1.0f - b.fx) * at(b.x0, b.y1) + b.fx * at(b.x1, b.y1));
@@ -78,7 +86,10 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     for_each_pcf_tap(L, r.face, r.st, p.pcf, [&](int f, int x, int y, float w) {
       const LightFace& lf = L.faces[size_t(f)];
       total += w;
-      lit += r.depth <= map.dist.distance[size_t(f)][size_t(y) * size_t(lf.width) + size_t(x)] ? w : 0.0f;
+      // rpdb (guard band: every tap in the receiver's face): the receiver plane's depth at the
+      // texel centre; grad is 0 without it.
+      const float depth = r.depth + glm::dot(r.grad, vec2(float(x) + 0.5f, float(y) + 0.5f) - r.st);
+      lit += depth <= map.dist.distance[size_t(f)][size_t(y) * size_t(lf.width) + size_t(x)] ? w : 0.0f;
     });
     return total > 0.0f ? std::min(lit / total, 1.0f) : 1.0f;
   });

@@ -34,6 +34,10 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
   // Only cross-face PCF taps can reach another face; with a guard band every tap stays in the
   // receiver's own face image.
   const bool cross = p.filter == MapFilter::Depth && p.seams == SeamMode::Cross && p.pcf > 1;
+  // PCSS kernels grow with the penumbra and may reach any face: once one pixel is looked up,
+  // every face is needed.
+  const bool pcss = p.filter == MapFilter::Pcss;
+  const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
   // The AVX2 kernel (no normal offset) takes groups of 8 pixels; the scalar loop is its oracle
   // and takes the rest.
   const Faces8Fn faces8 = p.normal <= 0.0f ? faces8_simd() : nullptr;
@@ -51,6 +55,7 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
         const Faces8 r = faces8(consts, cross ? p.pcf : 1, &g.position[i].x, &g.geo_normal[i].x,
                                 &g.covered[i], rest);
         f |= r.bits;
+        if (pcss && r.looked_up) f |= all;
         count += r.looked_up;
         if (r.rest)
           for (int k = 0; k < 8; ++k)
@@ -62,6 +67,7 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
       if (projector && !projector_slide_coords(frame, scene.light.position, g.position[i], st))
         continue;
       ++count;
+      if (pcss) f |= all;
       const vec3 to_p =
           lookup_point(layout, scene.light, p, g.position[i], g.geo_normal[i]) - scene.light.position;
       const int face = face_of(layout, to_p);
@@ -74,7 +80,6 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
       if (!pcf_taps_inside(c, p.pcf, lf.width, lf.height)) walk_taps(face, c);
     }
   };
-  const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
   if (!looked_up) {
     // A sparse sample first (8 pixels of every 512): when it already needs every face, so does
     // the whole image, and the pass ends after 1/64 of the work. Otherwise every pixel is
@@ -132,7 +137,7 @@ const std::vector<const MapFilterOps*>& map_filters() {
   static const std::vector<const MapFilterOps*> rows = {&kDepthCompare, &kVarianceMap,
                                                         &kExponentialMap,
                                                         &kExponentialVarianceMap,
-                                                        &kMomentShadowMap};
+                                                        &kMomentShadowMap, &kPcss};
   return rows;
 }
 

@@ -43,6 +43,7 @@ extern const MapFilterOps kVarianceMap;      // vsm: variance shadow map
 extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
 extern const MapFilterOps kExponentialVarianceMap;  // evsm: exponential variance shadow map
 extern const MapFilterOps kMomentShadowMap;  // msm: moment shadow map
+extern const MapFilterOps kPcss;             // pcss: percentage-closer soft shadows
 
 // Every filter, in registry order.
 const std::vector<const MapFilterOps*>& map_filters();

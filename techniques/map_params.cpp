@@ -13,7 +13,13 @@ MapParams default_map_params(FaceLayoutKind layout, MapFilter filter) {
   MapParams p;
   p.layout = layout;
   p.filter = filter;
-  if (filter != MapFilter::Depth) p.bias = p.slope = 0.0f;
+  // PCSS compares depths like depth compare and keeps its constant bias; its wide kernels take
+  // the receiver-plane depth bias by default instead of the slope term (README "PCSS").
+  if (filter != MapFilter::Depth && filter != MapFilter::Pcss) p.bias = p.slope = 0.0f;
+  if (filter == MapFilter::Pcss) {
+    p.rpdb = true;
+    p.slope = 0.0f;
+  }
   // csm always looked taps beyond a face up in the neighbouring face; the other layouts were
   // built with guard bands. Both stay the default of their layout (README: seams).
   p.seams = filter == MapFilter::Depth && layout == FaceLayoutKind::Cube ? SeamMode::Cross
@@ -53,11 +59,22 @@ void read_blur(SpecReader& r, const std::string& name, const char* flag, MapPara
     throw InputError(flag, name + ": 'blur' must be odd, got " + std::to_string(p.blur));
 }
 
+void read_rpdb(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
+  p.rpdb = r.get_bool("rpdb", p.rpdb);
+  if (!p.rpdb) return;
+  if (r.has("slope") && p.slope > 0.0f)
+    throw InputError(flag, name + ": 'rpdb=1' replaces the slope bias; drop 'slope' or set it to 0");
+  p.slope = 0.0f;
+}
+
 int map_guard(const MapParams& p) {
   // PCF reaches (pcf + 1)/2 texels from the lookup centre; a moment map's bilinear lookup
   // reaches 1 texel, whose filtered value reads blur/2 texels further. One more texel covers
   // the rounding of coordinates at a face's edge.
   if (p.filter == MapFilter::Depth) return p.seams == SeamMode::Cross ? 0 : (p.pcf + 1) / 2 + 1;
+  // PCSS reads taps beyond a face's image through their direction (any kernel width): the
+  // guard only keeps the bilinear footprint of a tap at the edge in its own face.
+  if (p.filter == MapFilter::Pcss) return 2;
   return 1 + p.blur / 2 + 1;
 }
 

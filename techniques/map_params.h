@@ -11,6 +11,7 @@
 // blur. VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment, fp32. ESM: c.
 // EVSM (evsm: cevsm, tevsm, pevsm): moments, c_pos, c_neg, min_variance, bleed.
 // MSM (msm: cmsm, tmsm, pmsm): variant, alpha, quantize16.
+// PCSS (pcss: cpcss, tpcss, ppcss): light_size, search, taps, search_near.
 #include <string>
 
 #include "techniques/depth_quantize.h"
@@ -19,7 +20,7 @@
 
 namespace shadowlab {
 
-enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment };
+enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment, Pcss };
 
 // How taps near a face's edge read their texels.
 //   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
@@ -73,6 +74,16 @@ struct MsmKeys {
                             // quantize16
 };
 
+// Keys of percentage-closer soft shadows (pcss; techniques/pcss.cpp): a blocker search, the
+// penumbra width from the mean blocker distance, then rotated Poisson PCF over that width.
+struct PcssKeys {
+  double light_size = -1.0;  // light radius, m; < 0: the scene light's radius ("light")
+  int search = 16;           // blocker-search taps (rotated Poisson disk)
+  int taps = 32;             // PCF taps (rotated Poisson disk)
+  double search_near = 0.25; // nearest blocker searched for, as a fraction of the receiver's
+                             // distance (sets the search disk: README "PCSS")
+};
+
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
   MapFilter filter = MapFilter::Depth;
@@ -87,6 +98,10 @@ struct MapParams {
   int pcf = 1;            // depth: 1 = nearest texel, odd N >= 3 = N×N bilinear-weighted taps
   PcfKind pcf_kind = PcfKind::Grid;  // depth: grid, or poisson (needs pcf >= 3 and the guard band)
   int taps = 16;          // depth, poisson: taps per pixel
+  bool rpdb = false;      // depth compare and pcss: receiver-plane depth bias: each tap compares
+                          // with the receiver plane's depth at the tap (its gradient in the
+                          // face's texel space, techniques/map_receiver.h) instead of the slope
+                          // term; needs the guard band
   SeamMode seams = SeamMode::Guard;  // depth: default Cross on the cube layout (csm's own
                                      // mechanism, kept byte for byte), Guard elsewhere
   int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)
@@ -94,6 +109,7 @@ struct MapParams {
   EsmKeys esm;            // the exponential filter's own keys (techniques/exponential_map.cpp)
   EvsmKeys evsm;          // the exponential variance filter's (techniques/exponential_variance_map.cpp)
   MsmKeys msm;            // the moment filter's (techniques/moment_shadow_map.cpp)
+  PcssKeys pcss;          // percentage-closer soft shadows' (techniques/pcss.cpp)
 };
 
 // The defaults of a layout × filter before any key is read (bias and slope are 0 for the
@@ -107,6 +123,9 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
 void read_blur(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
 // "key=default,…" of a layout × filter, for --list-techniques and --help.
 std::string map_keys_text(FaceLayoutKind layout, MapFilter filter);
+// Reads `rpdb` (depth compare, pcss): with rpdb=1 the slope term is off (an explicit slope > 0
+// is an error).
+void read_rpdb(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
 // Guard texels each face needs so that every tap and filter stays inside the face's image
 // (0 with SeamMode::Cross).
 int map_guard(const MapParams& p);

@@ -25,7 +25,33 @@ struct Receiver {
   float depth = 0.0f;  // biased radial distance / far (what the map's values are compared with)
   uint32_t texel = 0;  // texel index: face × texels per face + y × width + x
   size_t pixel = 0;    // the GBuffer pixel (seeds per-pixel random numbers: Poisson PCF)
+  vec2 grad{0.0f};     // rpdb: d(depth)/d(st) of the receiver's plane, per texel (else 0)
 };
+
+// Receiver-plane depth gradient (rpdb): the normalised radial distance, along the direction
+// through texel coordinates st of `f`, to the plane through the lookup point q with geometric
+// normal n, differentiated by st at the receiver. With D = forward + u·right + v·up (u, v the
+// plane coordinates of st), that distance is ρ = k·|D| / (n·D), k = n·(q − L); so
+// ∂ρ/∂u = k·((D·right)/|D| / (n·D) − |D|·(n·right)/(n·D)²), likewise v with up, times
+// du/dsx = (right_edge − left)/width and dv/dsy = −(top − bottom)/height. The cosine |n·D|/|D|
+// is clamped to >= 0.1 (as the slope term caps tan θ at 10), bounding the gradient at grazing
+// angles.
+inline vec2 receiver_plane_gradient(const LightFace& f, const vec3& to_q, const vec3& n,
+                                    float inv_far) {
+  const float inv_fwd = 1.0f / glm::dot(to_q, f.forward);
+  const vec3 D = f.forward + glm::dot(to_q, f.right) * inv_fwd * f.right +
+                 glm::dot(to_q, f.up) * inv_fwd * f.up;
+  const float len = glm::length(D);
+  float nd = glm::dot(n, D);
+  if (std::fabs(nd) < 0.001f * len) nd = nd < 0.0f ? -0.001f * len : 0.001f * len;
+  const float k = glm::dot(n, to_q);
+  auto partial = [&](const vec3& axis) {
+    return k * (glm::dot(D, axis) / len / nd - len * glm::dot(n, axis) / (nd * nd));
+  };
+  return vec2(partial(f.right) * (f.right_edge - f.left) / float(f.width),
+              -partial(f.up) * (f.top - f.bottom) / float(f.height)) *
+         inv_far;
+}
 
 // Texel of a continuous coordinate, clamped to [0, n). Truncation equals floor here: they
 // differ only for negative non-integers, which the clamp maps to texel 0 either way (and floorf
@@ -77,6 +103,7 @@ inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
                                ? k * plane_texel * dist * tan_t
                                : k * (plane_texel * glm::dot(to_p, f.forward)) * tan_t;
   r.depth = (dist - (p.bias + slope_bias)) * inv_far;
+  if (p.rpdb) r.grad = receiver_plane_gradient(f, to_p, n, inv_far);
   return r;
 }
 

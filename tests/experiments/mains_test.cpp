@@ -419,6 +419,35 @@ TEST(Mains, CachedReferenceTimesAreNull) {
   EXPECT_NE(ref_line.find("100.0000,,,,,1.000000"), std::string::npos) << ref_line;
 }
 
+// Every CSV row has the header's field count when commas inside quotes are not separators: a
+// spec with its own keys ("csm:pcf=3") puts commas into both the label and the spec.
+TEST(Mains, SweepCsvQuotesFieldsWithCommas) {
+  const std::string out = test::binary_path("csv_quote_out");
+  const std::string cmd = std::string(SHADOWLAB_BINARY_DIR) +
+                          "/experiments/resolution_sweep --quick --width 64 --height 48 "
+                          "--resolutions 32 --no-cache --techniques csm:pcf=3,bias=0.02 --out " +
+                          out + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::istringstream csv(file_bytes(out + "/sweep.csv"));
+  auto fields = [](const std::string& line) {
+    size_t n = 1;
+    bool quoted = false;
+    for (const char c : line) {
+      if (c == '"') quoted = !quoted;
+      n += c == ',' && !quoted;
+    }
+    return n;
+  };
+  std::string header, line;
+  std::getline(csv, header);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(fields(line), fields(header)) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);  // the reference and csm at 32
+}
+
 // A cache folder that cannot be written: the reference is computed, used and written to --out,
 // with one warning (it used to be computed, then the run failed with no mask written).
 TEST(Mains, UnwritableCacheLosesNoWork) {

@@ -37,7 +37,9 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
                              "tsm:res=128,pcf=3,seams=cross", "cvsm:res=128,bleed=0.2", "tesm:res=128",
                              "csm:res=128,pcf=5,pcf_kind=poisson", "tsm:res=128,pcf=3,pcf_kind=poisson,taps=8",
                              "cevsm:res=128,moments=4,bleed=0.1", "tmsm:res=128,variant=hausdorff",
-                             "cmsm:res=128,quantize16=1"})
+                             "cmsm:res=128,quantize16=1", "cpcss:res=128,light_size=0.1",
+                             "tpcss:res=128,light_size=0.2,rpdb=0", "csm:res=128,pcf=3,rpdb=1",
+                             "tsm:res=128,pcf=5,pcf_kind=poisson,rpdb=1"})
       o.family.push_back(test::run(spec, scene, o.g));
     outs.push_back(std::move(o));
   }

@@ -1,0 +1,64 @@
+// Receiver-plane depth bias (rpdb): the plane gradient in a face's texel space against a finite
+// difference of the exact distance to the receiver's plane, found by intersecting the rays
+// through neighbouring texel coordinates with that plane (an independent computation).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "techniques/light_faces.h"
+#include "techniques/map_receiver.h"
+
+namespace shadowlab {
+namespace {
+
+// Normalised distance from the light (at the origin) along the ray through st of face f to the
+// plane through q with normal n, in double.
+double plane_distance(const LightFace& f, double sx, double sy, const vec3& q, const vec3& n,
+                      double inv_far) {
+  const vec3 d = glm::normalize(face_texel_direction(f, float(sx), float(sy)));
+  const double num = double(n.x) * q.x + double(n.y) * q.y + double(n.z) * q.z;
+  const double den = double(n.x) * d.x + double(n.y) * d.y + double(n.z) * d.z;
+  return num / den * inv_far;
+}
+
+// On every cube and tetrahedral face, at random receivers whose plane is at least 30° from
+// grazing (inside the gradient's cosine clamp), the gradient equals the central difference over
+// ±0.5 texel. Measured worst relative error 5.4e-4 (float directions and the difference's own
+// curvature term); bound 2e-3.
+TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  double worst = 0.0;
+  int checked = 0;
+  for (const FaceLayout& L : {cube_layout(256, 2), tetra_layout(256, 2)})
+    for (size_t fi = 0; fi < L.faces.size(); ++fi) {
+      const LightFace& f = L.faces[fi];
+      for (int trial = 0; trial < 200; ++trial) {
+        const float sx = 0.2f * float(f.width) + 0.6f * float(f.width) * (0.5f + 0.5f * u(rng));
+        const float sy = 0.2f * float(f.height) + 0.6f * float(f.height) * (0.5f + 0.5f * u(rng));
+        const vec3 dir = glm::normalize(face_texel_direction(f, sx, sy));
+        const vec3 q = dir * (1.0f + 2.0f * (0.5f + 0.5f * u(rng)));
+        vec3 n = glm::normalize(vec3(u(rng), u(rng), u(rng)));
+        if (glm::dot(n, dir) > 0.0f) n = -n;  // facing the light
+        if (-glm::dot(n, dir) < 0.5f) continue;  // >= 30° from grazing
+        const double inv_far = 1.0 / 20.0;
+        const vec2 st = face_texel_coords(f, q);
+        const vec2 g = receiver_plane_gradient(f, q, n, float(inv_far));
+        const double h = 0.5;
+        const double gx = (plane_distance(f, st.x + h, st.y, q, n, inv_far) -
+                           plane_distance(f, st.x - h, st.y, q, n, inv_far)) / (2 * h);
+        const double gy = (plane_distance(f, st.x, st.y + h, q, n, inv_far) -
+                           plane_distance(f, st.x, st.y - h, q, n, inv_far)) / (2 * h);
+        const double scale = std::max(std::hypot(gx, gy), 1e-9);
+        worst = std::max(worst, std::hypot(g.x - gx, g.y - gy) / scale);
+        ++checked;
+      }
+    }
+  RecordProperty("worst_relative_error", std::to_string(worst));
+  EXPECT_GT(checked, 500);
+  EXPECT_LT(worst, 2e-3);
+}
+
+}  // namespace
+}  // namespace shadowlab
