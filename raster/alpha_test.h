@@ -70,17 +70,19 @@ struct AlphaDiscardShader {
 template <class Shader>
 RasterStats rasterize_alpha(const std::vector<MeshView>& meshes, const AlphaScene& alpha,
                             const mat4& view_proj, CullMode cull, int width, int height,
-                            DepthTarget& depth, Shader& shader) {
+                            DepthTarget& depth, Shader& shader,
+                            const ParaboloidProjection* paraboloid = nullptr) {
   static_assert(kKeepsAll<Shader> && !Shader::kNeedsAttributes);
-  if (!alpha.any) return rasterize(meshes, view_proj, cull, width, height, depth, shader);
+  if (!alpha.any)
+    return rasterize(meshes, view_proj, cull, width, height, depth, shader, paraboloid);
   SL_CHECK_EQ(alpha.meshes.size(), meshes.size());
   std::vector<MeshView> opaque = meshes, cutout = meshes;
   for (size_t m = 0; m < meshes.size(); ++m) (alpha.meshes[m].texture ? opaque : cutout)[m].skip = true;
   depth.resize(width, height);
   DepthOnlyShader plain;
-  const BinnedFrame first = bin_triangles(opaque, view_proj, cull, width, height);
+  const BinnedFrame first = bin_triangles(opaque, view_proj, cull, width, height, paraboloid);
   rasterize_frame(first, depth, plain);
-  const BinnedFrame second = bin_triangles(cutout, view_proj, cull, width, height);
+  const BinnedFrame second = bin_triangles(cutout, view_proj, cull, width, height, paraboloid);
   AlphaDiscardShader<Shader> discard{&alpha, &shader};
   rasterize_frame(second, depth, discard, /*clear=*/false);
   RasterStats st = first.stats;

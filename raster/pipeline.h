@@ -14,13 +14,14 @@ std::vector<MeshView> scene_mesh_views(const Scene& scene);
 // entry per mesh plus the total.
 std::vector<uint32_t> scene_first_triangles(const Scene& scene);
 
-// Renders `meshes` with `view_proj` into `depth` (resized to width × height; every pixel is
+// Renders `meshes` with `view_proj` (or `paraboloid`: raster/paraboloid.h) into `depth` (resized to width × height; every pixel is
 // cleared to 0 before the first triangle touches it).
 template <class Shader>
 RasterStats rasterize(const std::vector<MeshView>& meshes, const mat4& view_proj, CullMode cull,
-                      int width, int height, DepthTarget& depth, Shader& shader) {
+                      int width, int height, DepthTarget& depth, Shader& shader,
+                      const ParaboloidProjection* paraboloid = nullptr) {
   depth.resize(width, height);
-  const BinnedFrame frame = bin_triangles(meshes, view_proj, cull, width, height);
+  const BinnedFrame frame = bin_triangles(meshes, view_proj, cull, width, height, paraboloid);
   rasterize_frame(frame, depth, shader);
   return frame.stats;
 }

@@ -33,7 +33,8 @@ bool box_outside_frustum(const vec3& lo, const vec3& hi, const mat4& view_proj) 
 }
 
 BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_proj,
-                          CullMode cull, int width, int height) {
+                          CullMode cull, int width, int height,
+                          const ParaboloidProjection* paraboloid) {
   BinnedFrame frame;
   frame.width = width;
   frame.height = height;
@@ -54,7 +55,7 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
       mesh_culled[m] = 1;
       continue;
     }
-    if (mesh.has_bounds && box_outside_frustum(mesh.lo, mesh.hi, view_proj)) {
+    if (!paraboloid && mesh.has_bounds && box_outside_frustum(mesh.lo, mesh.hi, view_proj)) {
       mesh_culled[m] = 1;
       frame.stats.triangles_in += mesh.triangle_count;
       frame.stats.culled_frustum += mesh.triangle_count;
@@ -82,7 +83,7 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
     vec4* out = clip[pc.mesh].data();
     uint32_t* code = outcode[pc.mesh].data();
     for (size_t i = pc.begin; i < pc.end; ++i) {
-      out[i] = view_proj * vec4(pos[i], 1.0f);
+      out[i] = paraboloid ? paraboloid_clip(*paraboloid, pos[i]) : view_proj * vec4(pos[i], 1.0f);
       code[i] = vertex_outcode(out[i], guard_x, guard_y);  // once per vertex, not per corner
     }
   });

@@ -9,6 +9,7 @@
 
 #include "core/math.h"
 #include "raster/raster_types.h"
+#include "raster/paraboloid.h"
 #include "raster/setup.h"
 
 namespace shadowlab {
@@ -45,8 +46,11 @@ struct BinnedFrame {
 };
 
 // Transforms, clips, sets up and bins every triangle of `meshes` (global triangle index =
-// running count over the meshes in order) for a width × height viewport.
+// running count over the meshes in order) for a width × height viewport. With `paraboloid`,
+// vertices go through that projection instead of view_proj (raster/paraboloid.h; no
+// whole-mesh culling then).
 BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_proj,
-                          CullMode cull, int width, int height);
+                          CullMode cull, int width, int height,
+                          const ParaboloidProjection* paraboloid = nullptr);
 
 }  // namespace shadowlab

@@ -23,6 +23,12 @@ __attribute__((target_clones("avx2", "default"))) void radial_row(float* row, in
   }
 }
 
+// The paraboloid faces' row: w is the radial distance itself (raster/paraboloid.h).
+__attribute__((target_clones("avx2", "default"))) void paraboloid_row(float* row, int x0, int x1,
+                                                                     float inv_far) {
+  for (int x = x0; x < x1; ++x) row[x] = inv_far / row[x];
+}
+
 // Depth-only shader whose tile epilogue turns 1/w (reciprocal view depth) into normalised
 // radial distance: the ray through a texel centre with plane coordinates (u, v) has view
 // direction (u, v, -1), so |p - L| = view depth × sqrt(1 + u² + v²).
@@ -37,6 +43,11 @@ struct FaceRadialShader {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
     const float du = (face->right_edge - face->left) / float(face->width);
     const float dv = (face->top - face->bottom) / float(face->height);
+    if (face->paraboloid) {
+      for (int y = y0; y < y1; ++y)
+        paraboloid_row(out + size_t(y) * size_t(depth.width), x0, x1, inv_far);
+      return;
+    }
     for (int y = y0; y < y1; ++y) {
       const float v = face->top - (float(y) + 0.5f) * dv;
       radial_row(out + size_t(y) * size_t(depth.width), x0, x1, face->left, du, v, inv_far);
@@ -53,10 +64,92 @@ mat4 face_matrix(const FaceLayout& layout, size_t i, const PointLight& light) {
   return face_view_proj(layout.faces[i], light);
 }
 
+// The paraboloid projection of a face from the light.
+ParaboloidProjection face_paraboloid(const LightFace& f, const PointLight& light) {
+  ParaboloidProjection p;
+  p.centre = light.position;
+  p.right = f.right;
+  p.up = f.up;
+  p.forward = f.forward;
+  p.left = f.left;
+  p.right_edge = f.right_edge;
+  p.bottom = f.bottom;
+  p.top = f.top;
+  return p;
+}
+
+// tess=N on the paraboloid layout: every triangle whose image in the face has an edge longer
+// than N texels is split at its longest edge's world-space midpoint, recursively (at most 12
+// levels: 4,096 pieces per triangle), so the image's straight edges follow the true curves.
+// Triangles wholly behind the face's rim margin are kept as they are (the clip removes them).
+struct Tessellated {
+  std::vector<vec3> positions;
+  std::vector<uint32_t> indices;
+};
+
+void tessellate(const MeshView& m, const ParaboloidProjection& pp, float texels_per_unit,
+                float max_texels, Tessellated& out) {
+  auto image = [&](const vec3& p) { return paraboloid_point(pp, p - pp.centre) * texels_per_unit; };
+  auto behind = [&](const vec3& p) {
+    const vec3 d = p - pp.centre;
+    return glm::dot(d, pp.forward) < -pp.behind * glm::length(d);
+  };
+  struct Tri {
+    vec3 a, b, c;
+    int depth;
+  };
+  // Chunks of triangles in parallel, each into its own list, joined in triangle order (the
+  // output does not depend on the thread count).
+  constexpr size_t kGrain = 64;
+  const size_t chunks = (m.triangle_count + kGrain - 1) / kGrain;
+  std::vector<Tessellated> parts(chunks);
+  parallel_for(0, chunks, [&](size_t ci) {
+  Tessellated& part = parts[ci];
+  std::vector<Tri> stack;
+  for (size_t t = ci * kGrain; t < std::min(m.triangle_count, (ci + 1) * kGrain); ++t) {
+    const uint32_t* idx = m.indices + 3 * t;
+    stack.push_back({m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]], 0});
+    while (!stack.empty()) {
+      const Tri tri = stack.back();
+      stack.pop_back();
+      const vec2 ia = image(tri.a), ib = image(tri.b), ic = image(tri.c);
+      const float lab = glm::length(ib - ia), lbc = glm::length(ic - ib), lca = glm::length(ia - ic);
+      const float longest = std::max(lab, std::max(lbc, lca));
+      const bool all_behind = behind(tri.a) && behind(tri.b) && behind(tri.c);
+      if (tri.depth >= 12 || all_behind || !(longest > max_texels)) {
+        part.positions.push_back(tri.a);
+        part.positions.push_back(tri.b);
+        part.positions.push_back(tri.c);
+        continue;
+      }
+      // Split the longest edge; the two halves keep the triangle's winding.
+      if (lab >= lbc && lab >= lca) {
+        const vec3 m_ = 0.5f * (tri.a + tri.b);
+        stack.push_back({tri.a, m_, tri.c, tri.depth + 1});
+        stack.push_back({m_, tri.b, tri.c, tri.depth + 1});
+      } else if (lbc >= lca) {
+        const vec3 m_ = 0.5f * (tri.b + tri.c);
+        stack.push_back({tri.a, tri.b, m_, tri.depth + 1});
+        stack.push_back({tri.a, m_, tri.c, tri.depth + 1});
+      } else {
+        const vec3 m_ = 0.5f * (tri.c + tri.a);
+        stack.push_back({tri.a, tri.b, m_, tri.depth + 1});
+        stack.push_back({m_, tri.b, tri.c, tri.depth + 1});
+      }
+    }
+  }
+  });
+  for (const Tessellated& part : parts)
+    out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+  out.indices.resize(out.positions.size());
+  for (size_t i = 0; i < out.indices.size(); ++i) out.indices[i] = uint32_t(i);
+}
+
 }  // namespace
 
 void render_face_distances(const Scene& scene, const FaceLayout& layout,
-                           const std::vector<bool>& needed, FaceDistances& out, CullMode cull) {
+                           const std::vector<bool>& needed, FaceDistances& out, CullMode cull,
+                           int tess) {
   const size_t n = layout.faces.size();
   out.distance.resize(n);
   out.rendered.assign(n, false);
@@ -90,8 +183,36 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
     target.inv_w.swap(out.distance[i]);
     target.resize(face.width, face.height);
     FaceRadialShader shader{&face, 1.0f / scene.light.far, target.inv_w.data()};
-    stats[i] = rasterize_alpha(meshes, alpha, face_matrix(layout, i, scene.light), cull,
-                               face.width, face.height, target, shader);
+    if (face.paraboloid) {
+      const ParaboloidProjection pp = face_paraboloid(face, scene.light);
+      if (tess > 0) {
+        // Opaque meshes only: an alpha-tested mesh's uvs follow its own triangles.
+        std::vector<Tessellated> pieces(meshes.size());
+        std::vector<MeshView> views = meshes;
+        const float per_unit = float(face.width) / (face.right_edge - face.left);
+        for (size_t m = 0; m < meshes.size(); ++m) {
+          if (meshes[m].skip || (alpha.any && alpha.meshes[m].texture)) continue;
+          tessellate(meshes[m], pp, per_unit, float(tess), pieces[m]);
+          views[m].positions = pieces[m].positions.data();
+          views[m].vertex_count = pieces[m].positions.size();
+          views[m].indices = pieces[m].indices.data();
+          views[m].triangle_count = pieces[m].indices.size() / 3;
+          views[m].has_bounds = false;
+        }
+        // The alpha shader finds a triangle's mesh by the running triangle count.
+        AlphaScene tess_alpha = alpha;
+        for (size_t m = 0; m < views.size() && m + 1 < tess_alpha.first_triangle.size(); ++m)
+          tess_alpha.first_triangle[m + 1] = tess_alpha.first_triangle[m] + uint32_t(views[m].triangle_count);
+        stats[i] = rasterize_alpha(views, tess_alpha, mat4(1.0f), cull, face.width, face.height,
+                                   target, shader, &pp);
+      } else {
+        stats[i] = rasterize_alpha(meshes, alpha, mat4(1.0f), cull, face.width, face.height,
+                                   target, shader, &pp);
+      }
+    } else {
+      stats[i] = rasterize_alpha(meshes, alpha, face_matrix(layout, i, scene.light), cull,
+                                 face.width, face.height, target, shader);
+    }
     target.inv_w.swap(out.distance[i]);
   };
   if (concurrent)

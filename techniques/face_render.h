@@ -21,9 +21,10 @@ struct FaceDistances {
 };
 
 // Renders the faces with needed[i] set. Storage is reused across calls. Faces are rendered
-// with no face culling unless `cull` says otherwise (benchmarks).
+// with no face culling unless `cull` says otherwise (benchmarks). `tess` > 0 (paraboloid faces
+// only): triangles whose image has an edge longer than tess texels are split first.
 void render_face_distances(const Scene& scene, const FaceLayout& layout,
                            const std::vector<bool>& needed, FaceDistances& out,
-                           CullMode cull = CullMode::None);
+                           CullMode cull = CullMode::None, int tess = 0);
 
 }  // namespace shadowlab

@@ -81,6 +81,28 @@ FaceLayout tetra_layout(int res, int guard) {
   return L;
 }
 
+int paraboloid_face_edge(int res) {
+  return std::max(1, int(std::lround(std::sqrt(3.0) * double(res))));
+}
+
+FaceLayout dual_paraboloid_layout(int res, int guard) {
+  FaceLayout L;
+  L.kind = FaceLayoutKind::DualParaboloid;
+  L.res = res;
+  L.guard = guard;
+  const int e = paraboloid_face_edge(res);
+  L.faces.resize(2);
+  for (int i = 0; i < 2; ++i) {
+    LightFace& f = L.faces[size_t(i)];
+    f.forward = vec3(0.0f, i == 0 ? -1.0f : 1.0f, 0.0f);
+    f.up = vec3(0.0f, 0.0f, i == 0 ? 1.0f : -1.0f);
+    f.right = glm::cross(f.forward, f.up);
+    f.paraboloid = true;
+    set_extent(f, -1.0f, 1.0f, -1.0f, 1.0f, e + 2 * guard, e + 2 * guard, guard);
+  }
+  return L;
+}
+
 FaceLayout projector_layout(const Projector& projector, int res, int guard) {
   FaceLayout L;
   L.kind = FaceLayoutKind::Projector;
@@ -100,6 +122,11 @@ FaceLayout projector_layout(const Projector& projector, int res, int guard) {
 vec3 face_texel_direction(const LightFace& f, float sx, float sy) {
   const float u = f.left + sx / float(f.width) * (f.right_edge - f.left);
   const float v = f.top - sy / float(f.height) * (f.top - f.bottom);
+  if (f.paraboloid) {
+    // Inverse of (u, v) = (x, y)/(1 + z) on the unit sphere.
+    const float q = u * u + v * v;
+    return glm::normalize(2.0f * u * f.right + 2.0f * v * f.up + (1.0f - q) * f.forward);
+  }
   return glm::normalize(f.forward + u * f.right + v * f.up);
 }
 

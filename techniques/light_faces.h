@@ -21,6 +21,13 @@
 // S × S texture (face 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right), each face
 // S/2 × S/2 square texels over a 1.155:1 rectangle, so texels are non-square. S is the even
 // size whose texel count is closest to 6·N² for the comparable cube edge N (Kluczek).
+// Dual paraboloid (Brabec, Annen & Seidel 2002): 2 faces, forward −y (the hemisphere below the
+// light) and +y; a direction d̂ with z = d̂·forward >= 0 (ties to face 0) maps to the image-plane
+// point (d̂·right, d̂·up)/(1 + z), the hemisphere filling the unit disk (a conformal map: a
+// texel's angular size is plane texel × 2/(1 + u² + v²) in every direction). Each face's image
+// is [-1, 1]² of E × E texels plus the guard, E = round(√3·N), so the two faces hold ~6·N²
+// texels like the cube. Rendered through raster/paraboloid.h (per-vertex projection, linear
+// interpolation between vertices).
 // Projector: 1 face, the slide projector's frustum (core/projector.h): forward, up and right
 // of its frame, the owned region [-tan_x, tan_x] × [-tan_y, tan_y], round(N·aspect) × N texels
 // plus the guard. Every direction maps to face 0; directions outside the frustum receive no
@@ -33,7 +40,7 @@
 
 namespace shadowlab {
 
-enum class FaceLayoutKind { Cube, Tetrahedron, Projector };
+enum class FaceLayoutKind { Cube, Tetrahedron, Projector, DualParaboloid };
 
 // Light-space normals of the four tetrahedral faces (unit vectors).
 extern const vec3 kTetraNormals[4];
@@ -43,6 +50,9 @@ struct LightFace {
   float left = -1.0f, right_edge = 1.0f;      // plane-coordinate extent in u, guard included
   float bottom = -1.0f, top = 1.0f;           // plane-coordinate extent in v, guard included
   int width = 0, height = 0;                  // texels, guard included
+  bool paraboloid = false;                    // image-plane map of the dual-paraboloid layout
+                                              // (u, v = (d̂·right, d̂·up)/(1 + d̂·forward))
+                                              // instead of the gnomonic one
   size_t texel_count() const { return size_t(width) * size_t(height); }
 };
 
@@ -58,6 +68,9 @@ struct FaceLayout {
 FaceLayout cube_layout(int res, int guard);
 // Tetrahedral layout for comparable cube edge `res`: faces of S/2 × S/2 texels, guard included.
 FaceLayout tetra_layout(int res, int guard);
+// Dual-paraboloid layout: 2 faces of (E + 2·guard)² texels, E = paraboloid_face_edge(res).
+FaceLayout dual_paraboloid_layout(int res, int guard);
+int paraboloid_face_edge(int res);
 // Projector layout for the projector's frame: one face of round(res·aspect) × res owned texels.
 FaceLayout projector_layout(const Projector& projector, int res, int guard);
 // Edge S of the tetrahedral texture for cube edge n: the even S with S² closest to 6·n².
@@ -67,6 +80,8 @@ int tetra_atlas_size(int n);
 inline int face_of(const FaceLayout& layout, const vec3& dir) {
   if (layout.kind == FaceLayoutKind::Cube) return cube_face_of(dir);
   if (layout.kind == FaceLayoutKind::Projector) return 0;
+  if (layout.kind == FaceLayoutKind::DualParaboloid)
+    return glm::dot(dir, layout.faces[0].forward) >= 0.0f ? 0 : 1;
   int best = 0;
   float best_dot = glm::dot(dir, kTetraNormals[0]);
   for (int i = 1; i < 4; ++i) {
@@ -79,12 +94,18 @@ inline int face_of(const FaceLayout& layout, const vec3& dir) {
   return best;
 }
 // Continuous texel coordinates (x right, y down, centres at +0.5) of `dir` in `face`. Valid
-// for directions in front of the face (dir·forward > 0).
+// for directions in front of the face (dir·forward > 0; paraboloid: dir·forward > −|dir|).
 inline vec2 face_texel_coords(const LightFace& f, const vec3& dir) {
-  const float inv = 1.0f / glm::dot(dir, f.forward);
+  const float inv = f.paraboloid ? 1.0f / (glm::length(dir) + glm::dot(dir, f.forward))
+                                 : 1.0f / glm::dot(dir, f.forward);
   const float u = glm::dot(dir, f.right) * inv, v = glm::dot(dir, f.up) * inv;
   return vec2((u - f.left) / (f.right_edge - f.left) * float(f.width),
               (f.top - v) / (f.top - f.bottom) * float(f.height));
+}
+// Image-plane coordinates (u, v) of continuous texel coordinates st.
+inline vec2 face_plane_coords(const LightFace& f, vec2 st) {
+  return vec2(f.left + st.x / float(f.width) * (f.right_edge - f.left),
+              f.top - st.y / float(f.height) * (f.top - f.bottom));
 }
 // World-space unit direction through continuous texel coordinates (sx, sy).
 vec3 face_texel_direction(const LightFace& face, float sx, float sy);

@@ -19,6 +19,7 @@ FaceLayout map_layout(const MapParams& p, const Scene& scene) {
     case FaceLayoutKind::Cube: return cube_layout(p.res, guard);
     case FaceLayoutKind::Tetrahedron: return tetra_layout(p.res, guard);
     case FaceLayoutKind::Projector: return projector_layout(scene.projector, p.res, guard);
+    case FaceLayoutKind::DualParaboloid: return dual_paraboloid_layout(p.res, guard);
   }
   SL_CHECK(false);
   return {};
@@ -40,7 +41,9 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
   const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
   // The AVX2 kernel (no normal offset) takes groups of 8 pixels; the scalar loop is its oracle
   // and takes the rest.
-  const Faces8Fn faces8 = p.normal <= 0.0f ? faces8_simd() : nullptr;
+  // (Not on the paraboloid layout, whose map is not a perspective one.)
+  const Faces8Fn faces8 =
+      p.normal <= 0.0f && layout.kind != FaceLayoutKind::DualParaboloid ? faces8_simd() : nullptr;
   const MapLookupConsts consts =
       faces8 ? map_lookup_consts(scene, layout, p, {}) : MapLookupConsts{};
   // Faces (bit f: face f) and looked-up pixels of the pixels [b, e).
@@ -112,7 +115,7 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
 
 void render_light_map(const Scene& scene, const MapParams& p, const std::vector<bool>& needed,
                       LightMap& map) {
-  render_face_distances(scene, map.layout, needed, map.dist);
+  render_face_distances(scene, map.layout, needed, map.dist, CullMode::None, p.tess);
   for (size_t f = 0; f < map.dist.distance.size(); ++f)
     if (map.dist.rendered[f])
       quantize_depths(map.dist.distance[f].data(), map.dist.distance[f].size(), p.depth);

@@ -40,6 +40,7 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
   p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
   p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
   p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
+  if (layout == FaceLayoutKind::DualParaboloid) p.tess = r.get_int("tess", p.tess, 0, 4096);
   // The filter's own keys (techniques/map_filter.h).
   map_filter_ops(filter).parse_keys(r, n, flag, p);
   r.reject_unknown();
@@ -48,8 +49,9 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
 
 std::string map_keys_text(FaceLayoutKind layout, MapFilter filter) {
   const MapParams p = default_map_params(layout, filter);
-  return fmt::format("res={},bias={:g},slope={:g},normal={:g},depth=f32,", p.res, double(p.bias),
-                     double(p.slope), double(p.normal)) +
+  return fmt::format("res={},bias={:g},slope={:g},normal={:g},depth=f32,{}", p.res,
+                     double(p.bias), double(p.slope), double(p.normal),
+                     layout == FaceLayoutKind::DualParaboloid ? "tess=0," : "") +
          map_filter_ops(filter).keys_text(p);
 }
 

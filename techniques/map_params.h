@@ -104,6 +104,8 @@ struct MapParams {
                           // term; needs the guard band
   SeamMode seams = SeamMode::Guard;  // depth: default Cross on the cube layout (csm's own
                                      // mechanism, kept byte for byte), Guard elsewhere
+  int tess = 0;           // dual-paraboloid layout: split triangles whose image has an edge
+                          // longer than tess texels before projection (0 = off)
   int blur = 3;           // moment maps: separable box filter width, texels (odd; 1 = none)
   VsmKeys vsm;            // the variance filter's own keys (techniques/variance_map.cpp)
   EsmKeys esm;            // the exponential filter's own keys (techniques/exponential_map.cpp)

@@ -37,6 +37,24 @@ struct Receiver {
 // is clamped to >= 0.1 (as the slope term caps tan θ at 10), bounding the gradient at grazing
 // angles.
 inline vec2 receiver_plane_gradient(const LightFace& f, const vec3& to_q, const vec3& n,
+                                    float inv_far);
+// The same gradient for any face map (the paraboloid's), by central differences of the exact
+// plane distance along the directions through st ± ½ texel (cosine clamped likewise).
+inline vec2 receiver_plane_gradient_numeric(const LightFace& f, vec2 st, const vec3& to_q,
+                                            const vec3& n, float inv_far) {
+  const float k = glm::dot(n, to_q);
+  auto dist = [&](float sx, float sy) {
+    const vec3 d = face_texel_direction(f, sx, sy);
+    float nd = glm::dot(n, d);
+    if (std::fabs(nd) < 0.001f) nd = nd < 0.0f ? -0.001f : 0.001f;
+    return k / nd;
+  };
+  return vec2(dist(st.x + 0.5f, st.y) - dist(st.x - 0.5f, st.y),
+              dist(st.x, st.y + 0.5f) - dist(st.x, st.y - 0.5f)) *
+         inv_far;
+}
+
+inline vec2 receiver_plane_gradient(const LightFace& f, const vec3& to_q, const vec3& n,
                                     float inv_far) {
   const float inv_fwd = 1.0f / glm::dot(to_q, f.forward);
   const vec3 D = f.forward + glm::dot(to_q, f.right) * inv_fwd * f.right +
@@ -99,11 +117,20 @@ inline Receiver make_receiver(const FaceLayout& layout, const PointLight& light,
   r.texel = uint32_t(size_t(r.face) * f.texel_count() + size_t(ty) * size_t(f.width) + size_t(tx));
   const float tan_t = std::min(std::sqrt(1.0f - cos_t * cos_t) / cos_t, 10.0f);
   const float k = p.slope * reach;
-  const float slope_bias = layout.kind == FaceLayoutKind::Cube
-                               ? k * plane_texel * dist * tan_t
-                               : k * (plane_texel * glm::dot(to_p, f.forward)) * tan_t;
+  float slope_bias;
+  if (layout.kind == FaceLayoutKind::Cube) {
+    slope_bias = k * plane_texel * dist * tan_t;
+  } else if (f.paraboloid) {
+    // The paraboloid map is conformal: a texel spans plane texel × 2/(1 + u² + v²) radians.
+    const vec2 uv = face_plane_coords(f, r.st);
+    slope_bias = k * (plane_texel * dist * 2.0f / (1.0f + glm::dot(uv, uv))) * tan_t;
+  } else {
+    slope_bias = k * (plane_texel * glm::dot(to_p, f.forward)) * tan_t;
+  }
   r.depth = (dist - (p.bias + slope_bias)) * inv_far;
-  if (p.rpdb) r.grad = receiver_plane_gradient(f, to_p, n, inv_far);
+  if (p.rpdb)
+    r.grad = f.paraboloid ? receiver_plane_gradient_numeric(f, r.st, to_p, n, inv_far)
+                          : receiver_plane_gradient(f, to_p, n, inv_far);
   return r;
 }
 

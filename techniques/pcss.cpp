@@ -99,7 +99,9 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
   const float per_plane = float(f.width) / (f.right_edge - f.left);  // texels per plane unit
   const float u = f.left + r.st.x / per_plane;
   const float v = f.top - r.st.y * (f.top - f.bottom) / float(f.height);
-  const float texels_per_radian = per_plane * std::sqrt(1.0f + u * u + v * v);
+  // (The paraboloid map is conformal, with 2/(1 + u² + v²) radians per plane unit.)
+  const float texels_per_radian = f.paraboloid ? per_plane * 0.5f * (1.0f + u * u + v * v)
+                                               : per_plane * std::sqrt(1.0f + u * u + v * v);
   const double t = double(r.depth);
   const float max_radius = 0.5f * float(std::max(f.width, f.height));
   // 1. Blocker search: blockers at s·t or farther can hide part of the light from the receiver

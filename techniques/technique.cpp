@@ -33,6 +33,7 @@ const LayoutName kLayouts[] = {
     {'c', FaceLayoutKind::Cube, "cube (6 faces of 90°)"},
     {'t', FaceLayoutKind::Tetrahedron, "tetrahedral (4 faces in quadrants of one ~6·res² texture)"},
     {'p', FaceLayoutKind::Projector, "projector (one face over the slide projector's frustum; needs --slide)"},
+    {'d', FaceLayoutKind::DualParaboloid, "dual-paraboloid (2 hemispheres of ~3·res² texels)"},
 };
 
 std::vector<Entry> make_registry() {
