@@ -312,6 +312,35 @@ std::vector<StabilityRow> run_stability_cases() {
                              "mismatch <= 0.3%; leak <= 0.15", 0.15));
   }
 
+  // 4c. DPSM with one triangle spanning the whole hemisphere below the light: a 2 km triangle
+  //     1 m under the light (its corners 89.9° from the nadir, near the paraboloid's rim) over
+  //     the plane scene's floor, which it shadows entirely; the camera looks at the floor from
+  //     under it. Without tess the triangle's image is the chord triangle between three rim
+  //     points and 1/r is interpolated linearly across it, far from the true 1/r ∝ (1 − ρ²)/
+  //     (1 + ρ²): its stored distances come out far too large and the floor leaks. tess=N
+  //     splits it until every image edge is at most N texels. Measured (2026-11-28): without
+  //     tess mismatch 68 %, leak 1.0 (the floor entirely lit); tess=64 and tess=8 mismatch 0,
+  //     leak 0 (so does csm).
+  {
+    Scene s = sized(make_builtin_scene("plane"));
+    Mesh big;
+    big.name = "hemisphere_triangle";
+    big.positions = {vec3(-1000.0f, 1.0f, 600.0f), vec3(1000.0f, 1.0f, 600.0f),
+                     vec3(0.0f, 1.0f, -1150.0f)};
+    big.normals = {vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0)};
+    big.indices = {0, 1, 2};  // front +y, towards the light
+    s.meshes.push_back(big);
+    s.camera.eye = vec3(2.5f, 0.8f, 2.0f);
+    s.camera.target = vec3(0.0f, 0.0f, 0.0f);
+    s.camera.fov_y_deg = 50.0f;
+    const Prepared p = prepare(s);
+    rows.push_back(measure(p, "dpsm_hemisphere", "1 triangle", "dsm:res=1024", Check::NonFinite,
+                           0.0, "finite (leaks expected: the floor comes out lit)"));
+    for (const char* spec : {"dsm:res=1024,tess=64", "dsm:res=1024,tess=8", "csm:res=1024"})
+      rows.push_back(measure(p, "dpsm_hemisphere", "1 triangle", spec, Check::Mismatch, 0.005,
+                             "mismatch <= 0.5%; leak <= 0.01", 0.01));
+  }
+
   // 5. A thin occluder: a pole 6 mm wide, 1.5-2.5 m from the light, about one texel of a 512
   //    cube face there (2/512 × 1.5 m = 5.9 mm per texel at the axis), over a floor 2 m below
   //    the light; the camera looks at its shadow 2.5-3.5 m out (a pixel is ~9 mm, the shadow

@@ -79,8 +79,10 @@ ParaboloidProjection face_paraboloid(const LightFace& f, const PointLight& light
 }
 
 // tess=N on the paraboloid layout: every triangle whose image in the face has an edge longer
-// than N texels is split at its longest edge's world-space midpoint, recursively (at most 12
-// levels: 4,096 pieces per triangle), so the image's straight edges follow the true curves.
+// than N texels is split at its longest edge's world-space midpoint, recursively, so the
+// image's straight edges follow the true curves. Splitting is adaptive (a far piece's image is
+// small and stops early; a 2 km triangle under the light needs ~30 levels at its nadir), so
+// the bound is on work, not depth: at most 48 levels and 2^20 pieces per triangle.
 // Triangles wholly behind the face's rim margin are kept as they are (the clip removes them).
 struct Tessellated {
   std::vector<vec3> positions;
@@ -109,6 +111,7 @@ void tessellate(const MeshView& m, const ParaboloidProjection& pp, float texels_
   for (size_t t = ci * kGrain; t < std::min(m.triangle_count, (ci + 1) * kGrain); ++t) {
     const uint32_t* idx = m.indices + 3 * t;
     stack.push_back({m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]], 0});
+    size_t pieces = 1;  // pieces this triangle has become so far (kept + on the stack)
     while (!stack.empty()) {
       const Tri tri = stack.back();
       stack.pop_back();
@@ -116,12 +119,14 @@ void tessellate(const MeshView& m, const ParaboloidProjection& pp, float texels_
       const float lab = glm::length(ib - ia), lbc = glm::length(ic - ib), lca = glm::length(ia - ic);
       const float longest = std::max(lab, std::max(lbc, lca));
       const bool all_behind = behind(tri.a) && behind(tri.b) && behind(tri.c);
-      if (tri.depth >= 12 || all_behind || !(longest > max_texels)) {
+      if (tri.depth >= 48 || pieces >= (size_t(1) << 20) || all_behind ||
+          !(longest > max_texels)) {
         part.positions.push_back(tri.a);
         part.positions.push_back(tri.b);
         part.positions.push_back(tri.c);
         continue;
       }
+      ++pieces;
       // Split the longest edge; the two halves keep the triangle's winding.
       if (lab >= lbc && lab >= lca) {
         const vec3 m_ = 0.5f * (tri.a + tri.b);

@@ -163,7 +163,8 @@ TEST(FaceMaps, BadParametersAreRejected) {
                           "cmsm:alpha=0.6", "tmsm:quantize16=2", "cmsm:pcf=3", "cpcss:slope=1",
                           "cpcss:light_size=-1", "cpcss:light_size=lamp", "cpcss:taps=0",
                           "cpcss:search_near=1", "tpcss:blur=3", "csm:rpdb=1,seams=cross",
-                          "csm:rpdb=1,slope=2", "cvsm:rpdb=1"}) {
+                          "csm:rpdb=1,slope=2", "cvsm:rpdb=1", "csm:tess=4", "dsm:tess=-1",
+                          "dvsm:tess=5000"}) {
     EXPECT_THROW(validate_technique(parse_technique_spec(bad, "--technique"), "--technique"),
                  InputError)
         << bad;
