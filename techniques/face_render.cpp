@@ -6,6 +6,7 @@
 #include "raster/alpha_test.h"
 #include "raster/pipeline.h"
 #include "techniques/cube_faces.h"
+#include "techniques/paraboloid_tess.h"
 
 namespace shadowlab {
 namespace {
@@ -76,78 +77,6 @@ ParaboloidProjection face_paraboloid(const LightFace& f, const PointLight& light
   p.bottom = f.bottom;
   p.top = f.top;
   return p;
-}
-
-// tess=N on the paraboloid layout: every triangle whose image in the face has an edge longer
-// than N texels is split at its longest edge's world-space midpoint, recursively, so the
-// image's straight edges follow the true curves. Splitting is adaptive (a far piece's image is
-// small and stops early; a 2 km triangle under the light needs ~30 levels at its nadir), so
-// the bound is on work, not depth: at most 48 levels and 2^20 pieces per triangle.
-// Triangles wholly behind the face's rim margin are kept as they are (the clip removes them).
-struct Tessellated {
-  std::vector<vec3> positions;
-  std::vector<uint32_t> indices;
-};
-
-void tessellate(const MeshView& m, const ParaboloidProjection& pp, float texels_per_unit,
-                float max_texels, Tessellated& out) {
-  auto image = [&](const vec3& p) { return paraboloid_point(pp, p - pp.centre) * texels_per_unit; };
-  auto behind = [&](const vec3& p) {
-    const vec3 d = p - pp.centre;
-    return glm::dot(d, pp.forward) < -pp.behind * glm::length(d);
-  };
-  struct Tri {
-    vec3 a, b, c;
-    int depth;
-  };
-  // Chunks of triangles in parallel, each into its own list, joined in triangle order (the
-  // output does not depend on the thread count).
-  constexpr size_t kGrain = 64;
-  const size_t chunks = (m.triangle_count + kGrain - 1) / kGrain;
-  std::vector<Tessellated> parts(chunks);
-  parallel_for(0, chunks, [&](size_t ci) {
-  Tessellated& part = parts[ci];
-  std::vector<Tri> stack;
-  for (size_t t = ci * kGrain; t < std::min(m.triangle_count, (ci + 1) * kGrain); ++t) {
-    const uint32_t* idx = m.indices + 3 * t;
-    stack.push_back({m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]], 0});
-    size_t pieces = 1;  // pieces this triangle has become so far (kept + on the stack)
-    while (!stack.empty()) {
-      const Tri tri = stack.back();
-      stack.pop_back();
-      const vec2 ia = image(tri.a), ib = image(tri.b), ic = image(tri.c);
-      const float lab = glm::length(ib - ia), lbc = glm::length(ic - ib), lca = glm::length(ia - ic);
-      const float longest = std::max(lab, std::max(lbc, lca));
-      const bool all_behind = behind(tri.a) && behind(tri.b) && behind(tri.c);
-      if (tri.depth >= 48 || pieces >= (size_t(1) << 20) || all_behind ||
-          !(longest > max_texels)) {
-        part.positions.push_back(tri.a);
-        part.positions.push_back(tri.b);
-        part.positions.push_back(tri.c);
-        continue;
-      }
-      ++pieces;
-      // Split the longest edge; the two halves keep the triangle's winding.
-      if (lab >= lbc && lab >= lca) {
-        const vec3 m_ = 0.5f * (tri.a + tri.b);
-        stack.push_back({tri.a, m_, tri.c, tri.depth + 1});
-        stack.push_back({m_, tri.b, tri.c, tri.depth + 1});
-      } else if (lbc >= lca) {
-        const vec3 m_ = 0.5f * (tri.b + tri.c);
-        stack.push_back({tri.a, tri.b, m_, tri.depth + 1});
-        stack.push_back({tri.a, m_, tri.c, tri.depth + 1});
-      } else {
-        const vec3 m_ = 0.5f * (tri.c + tri.a);
-        stack.push_back({tri.a, tri.b, m_, tri.depth + 1});
-        stack.push_back({m_, tri.b, tri.c, tri.depth + 1});
-      }
-    }
-  }
-  });
-  for (const Tessellated& part : parts)
-    out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
-  out.indices.resize(out.positions.size());
-  for (size_t i = 0; i < out.indices.size(); ++i) out.indices[i] = uint32_t(i);
 }
 
 }  // namespace
