@@ -23,7 +23,8 @@ struct Times {
 };
 
 const char* const kDefaultSpecs =
-    "csm,csm:pcf=3,tsm,tsm:pcf=3,cvsm,tvsm,cesm,tesm,cevsm,tevsm";
+    "csm,csm:pcf=3,tsm,tsm:pcf=3,cvsm,tvsm,cesm,tesm,cevsm,tevsm,cmsm,tmsm,cpcss,tpcss,dsm,dvsm,"
+    "csm:pcf=5,pcf_kind=poisson";
 
 }  // namespace
 
