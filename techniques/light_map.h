@@ -23,12 +23,13 @@ namespace shadowlab {
 // A built map: the layout, the rendered distances and, for filtering techniques, the filtered
 // planes per face (VSM: mean + variance, or m1 + m2 in fp32 mode, and the max depth when
 // maxdepth_eps > 0; ESM: the log-space occluder term c·z in plane a; EVSM: the positive warp's
-// mean + variance in a, b and the negative warp's in c, d).
+// mean + variance in a, b and the negative warp's in c, d; MSM: the moments E[d]…E[d⁴] in a–d).
 struct LightMap {
   FaceLayout layout;
   FaceDistances dist;
   std::vector<std::vector<float>> a, b, max_depth;
-  std::vector<std::vector<float>> c, d;  // evsm with 4 moments: the negative warp's mean, variance
+  std::vector<std::vector<float>> c, d;  // evsm with 4 moments: the negative warp's mean,
+                                         // variance; msm: the third and fourth moments
   FilterScratch scratch;  // the max filter's, reused by every face and every rebuild
 };
 

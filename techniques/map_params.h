@@ -2,16 +2,17 @@
 // Parameters of every light-map technique: a layout × a filter (README "Techniques").
 //
 // A technique's name is a layout letter plus a filter: c (cube), t (tetrahedral), p (the slide
-// projector's one face) + sm (depth compare with PCF), vsm (variance), esm (exponential):
-// csm, tsm, psm, cvsm, tvsm, pvsm, cesm, tesm, pesm. One struct and one parser serve all of
-// them; the keys a filter does not use are errors.
+// projector's one face), d (dual-paraboloid) + sm (depth compare with PCF), vsm (variance), esm
+// (exponential), evsm, msm, pcss: csm, tsm, psm, dsm, cvsm, …, dpcss. One struct and one parser
+// serve all of them; the keys a filter does not use are errors.
 //
 // Shared keys: res (comparable cube edge N; psm: the map's height), bias (m), slope, normal,
-// depth (stored precision, techniques/depth_quantize.h). Depth compare: pcf, seams. Filters:
-// blur. VSM: min_variance (m²), bleed, maxdepth_eps (m), slope_moment, fp32. ESM: c.
+// depth (stored precision, techniques/depth_quantize.h); d only: tess. Depth compare: pcf,
+// seams, pcf_kind, taps, rpdb. Filters: blur. VSM: min_variance (m²), bleed, maxdepth_eps (m),
+// slope_moment, fp32. ESM: c.
 // EVSM (evsm: cevsm, tevsm, pevsm): moments, c_pos, c_neg, min_variance, bleed.
 // MSM (msm: cmsm, tmsm, pmsm): variant, alpha, quantize16.
-// PCSS (pcss: cpcss, tpcss, ppcss): light_size, search, taps, search_near.
+// PCSS (pcss: cpcss, tpcss, ppcss): light_size, search, taps, search_near, rpdb.
 #include <string>
 
 #include "techniques/depth_quantize.h"
