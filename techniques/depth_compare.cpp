@@ -3,6 +3,9 @@
 // rotated Poisson-disk taps (pcf_kind=poisson), with the seams of techniques/map_params.h
 // (cross-face taps or a guard band).
 #include <algorithm>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "core/error.h"
 #include "techniques/map_filter.h"
@@ -65,6 +68,106 @@ float poisson_visibility(const LightFace& f, const float* dist, const Receiver& 
   return lit / float(disk.points.size());
 }
 
+#if defined(__x86_64__)
+#define SL_AVX2 __attribute__((target("avx2")))
+// poisson_visibility for the 8 lanes of a batch (no rpdb: the batch path has no plane gradient),
+// its float operations in its order: the tap's coordinates, bilinear_taps (floor_int, clamp to
+// the face), the four compares as gathers from the stored distances, the weighted sum, the
+// mean. cosv/sinv: each lane's rotation (poisson_rotation of its pixel).
+SL_AVX2 inline __m256i face_table(const int32_t* t, __m256i face) {
+  return _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(t)), face);
+}
+SL_AVX2 inline __m256i clamp_to(__m256i v, __m256i hi) {
+  return _mm256_min_epi32(_mm256_max_epi32(v, _mm256_setzero_si256()), hi);
+}
+// floor_int (map_receiver.h): truncate, step down where the truncation is above g.
+SL_AVX2 inline __m256i floor_to_int(__m256 g) {
+  const __m256i i = _mm256_cvttps_epi32(g);
+  const __m256 above = _mm256_cmp_ps(_mm256_cvtepi32_ps(i), g, _CMP_GT_OQ);
+  return _mm256_add_epi32(i, _mm256_castps_si256(above));
+}
+// 1 where depth <= the stored distance of texel (x, y) of the lane's face, else 0.
+SL_AVX2 inline __m256 lit_at(const MapLookupConsts& c, __m256i offset, __m256i width,
+                             __m256 gather_mask, __m256 depth, __m256i x, __m256i y) {
+  const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(y, width), x));
+  const __m256 d = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), c.depth_base, idx, gather_mask, 4);
+  return _mm256_and_ps(_mm256_cmp_ps(depth, d, _CMP_LE_OQ), _mm256_set1_ps(1.0f));
+}
+
+SL_AVX2 void poisson_batch_avx2(const MapLookupConsts& c, const Receivers8& r, const float* cosv,
+                                const float* sinv, const PoissonDisk& disk, float radius,
+                                float* out) {
+  const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+  const __m256i zero_i = _mm256_setzero_si256(), one_i = _mm256_set1_epi32(1);
+  const __m256 sx = _mm256_load_ps(r.sx), sy = _mm256_load_ps(r.sy);
+  const __m256 depth = _mm256_load_ps(r.depth);
+  const __m256i active = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.active));
+  const __m256 gather_mask = _mm256_castsi256_ps(  // active lanes are all ones, others 0
+      _mm256_xor_si256(_mm256_cmpeq_epi32(active, zero_i), _mm256_set1_epi32(-1)));
+  // Inactive lanes read face 0's first texel (masked gathers skip them anyway).
+  const __m256i face = _mm256_and_si256(
+      _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)), _mm256_castps_si256(gather_mask));
+  const __m256i width = face_table(c.width, face), height = face_table(c.height, face);
+  const __m256i offset = face_table(c.offset, face);
+  const __m256i wmax = _mm256_sub_epi32(width, one_i), hmax = _mm256_sub_epi32(height, one_i);
+  const __m256 cs = _mm256_loadu_ps(cosv), sn = _mm256_loadu_ps(sinv);
+  const __m256 rad = _mm256_set1_ps(radius);
+  __m256 lit = _mm256_setzero_ps();
+  for (const vec2& q : disk.points) {
+    const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
+    const __m256 tx = _mm256_add_ps(
+        sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(cs, qx), _mm256_mul_ps(sn, qy))));
+    const __m256 ty = _mm256_add_ps(
+        sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(sn, qx), _mm256_mul_ps(cs, qy))));
+    const __m256 gx = _mm256_sub_ps(tx, half), gy = _mm256_sub_ps(ty, half);
+    const __m256i ix = floor_to_int(gx), iy = floor_to_int(gy);
+    const __m256 fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix));
+    const __m256 fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy));
+    const __m256i x0 = clamp_to(ix, wmax), x1 = clamp_to(_mm256_add_epi32(ix, one_i), wmax);
+    const __m256i y0 = clamp_to(iy, hmax), y1 = clamp_to(_mm256_add_epi32(iy, one_i), hmax);
+    const __m256 ofx = _mm256_sub_ps(one, fx), ofy = _mm256_sub_ps(one, fy);
+    const __m256 a00 = lit_at(c, offset, width, gather_mask, depth, x0, y0);
+    const __m256 a10 = lit_at(c, offset, width, gather_mask, depth, x1, y0);
+    const __m256 a01 = lit_at(c, offset, width, gather_mask, depth, x0, y1);
+    const __m256 a11 = lit_at(c, offset, width, gather_mask, depth, x1, y1);
+    const __m256 top = _mm256_add_ps(_mm256_mul_ps(ofx, a00), _mm256_mul_ps(fx, a10));
+    const __m256 bot = _mm256_add_ps(_mm256_mul_ps(ofx, a01), _mm256_mul_ps(fx, a11));
+    lit = _mm256_add_ps(lit, _mm256_add_ps(_mm256_mul_ps(ofy, top), _mm256_mul_ps(fy, bot)));
+  }
+  _mm256_storeu_ps(out, _mm256_div_ps(lit, _mm256_set1_ps(float(disk.points.size()))));
+}
+#endif
+
+// 8 lanes of rotated Poisson PCF at once (poisson_batch_avx2), with each lane's rotation from
+// its pixel. Used only where the AVX2 kernels and one-base gathers exist.
+struct PoissonBatch {
+  static constexpr bool kEnabled = true;
+  const PoissonDisk* disk;
+  float radius;
+  const LightMap* map;
+  void operator()(const MapLookupConsts& c, const Receivers8& r, size_t first, float* out) const {
+    if (!c.gather_ok) {  // faces too far apart for one gather base: the scalar taps, lane by lane
+      for (int k = 0; k < 8; ++k) {
+        if (!r.active[k]) continue;
+        const Receiver rc = lane_receiver(r, k, first + size_t(k));
+        const size_t f = size_t(rc.face);
+        out[k] = poisson_visibility(map->layout.faces[f], map->dist.distance[f].data(), rc, *disk,
+                                    radius);
+      }
+      return;
+    }
+    float cosv[8], sinv[8];
+    for (int k = 0; k < 8; ++k) {
+      const vec2 rot = r.active[k] ? poisson_rotation(first + size_t(k)) : vec2(1.0f, 0.0f);
+      cosv[k] = rot.x;
+      sinv[k] = rot.y;
+    }
+#if defined(__x86_64__)
+    poisson_batch_avx2(c, r, cosv, sinv, *disk, radius, out);
+#endif
+  }
+};
+
 void filter(const MapParams&, LightMap&) {}  // the stored distances are the map
 
 void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
@@ -73,10 +176,15 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   if (p.pcf_kind == PcfKind::Poisson) {
     const PoissonDisk disk = poisson_disk(p.taps);
     const float radius = 0.5f * float(p.pcf);
-    lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {
+    auto visibility = [&](const Receiver& r) {
       return poisson_visibility(L.faces[size_t(r.face)], map.dist.distance[size_t(r.face)].data(),
                                 r, disk, radius);
-    });
+    };
+    // The batch needs AVX2 (receivers8_simd() is null without it) and no plane gradient.
+    if (receivers8_simd() && !p.rpdb)
+      lookup_pixels(scene, g, p, map, mask, texels, visibility, PoissonBatch{&disk, radius, &map});
+    else
+      lookup_pixels(scene, g, p, map, mask, texels, visibility);
     return;
   }
   lookup_pixels(scene, g, p, map, mask, texels, [&](const Receiver& r) {

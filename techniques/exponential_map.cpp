@@ -108,7 +108,7 @@ struct EsmBatch {
   float cf;
   Bilinear8Fn bilinear8;
   PlaneGather a;
-  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+  void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float z[1][4][8], fx[8], fy[8], ct[8];
     if (bilinear8 && a.ok) {
       bilinear8(c, r, &a, 1, z, fx, fy);

@@ -24,14 +24,15 @@ inline Receiver lane_receiver(const Receivers8& r, int k, size_t pixel) {
 // No batch form: lanes of a SIMD group run `visibility` one by one.
 struct NoBatch {
   static constexpr bool kEnabled = false;
-  void operator()(const MapLookupConsts&, const Receivers8&, float*) const {}
+  void operator()(const MapLookupConsts&, const Receivers8&, size_t, float*) const {}
 };
 
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
 // of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
 // compare in vector form too (footprints inside a face); the scalar loop takes the rest.
-// `batch(consts, receivers, out)`, when given (kEnabled), computes the 8 lanes' visibility at
-// once (the filters' AVX2 kernels); it must give `visibility`'s bits lane for lane (its oracle).
+// `batch(consts, receivers, first_pixel, out)`, when given (kEnabled), computes the 8 lanes'
+// visibility at once (the filters' AVX2 kernels; lane k is GBuffer pixel first_pixel + k); it
+// must give `visibility`'s bits lane for lane (its oracle).
 template <class Visibility, class Batch = NoBatch>
 void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
                    ImageF& mask, ImageU32* texels, const Visibility& visibility,
@@ -75,7 +76,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
       if constexpr (Batch::kEnabled) {
         if (!pcf) {
           alignas(32) float vis[8];
-          batch(c, r, vis);
+          batch(c, r, i, vis);
           for (int k = 0; k < 8; ++k)
             if (r.active[k]) m[k] = std::clamp(vis[k], 0.0f, 1.0f);
           continue;

@@ -139,7 +139,7 @@ struct MsmBatch {
   MsmConsts k;
   Bilinear8Fn bilinear8;
   PlaneGather planes[4];  // a, b, c, d: moments 1 to 4
-  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+  void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8(c, r, planes, 4, v, fx, fy);
 #if defined(__x86_64__)

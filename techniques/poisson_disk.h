@@ -19,9 +19,9 @@ struct PoissonDisk {
 // 5 % after every 200·n rejected candidates until n points are in. n in [1, 256].
 PoissonDisk poisson_disk(int n);
 
-// The per-pixel rotation of the pattern, (cos θ, sin θ) with θ uniform in [0, 2π) from the
-// counter-based hash of the pixel index (core/rng.h): the same for a pixel on every run and
-// thread count, different from pixel to pixel.
+// The per-pixel rotation of the pattern, (cos θ, sin θ) with θ one of 4096 equally spaced angles
+// in [0, 2π), picked by the counter-based hash of the pixel index (core/rng.h): the same for a
+// pixel on every run and thread count, different from pixel to pixel.
 vec2 poisson_rotation(size_t pixel);
 
 }  // namespace shadowlab

@@ -132,7 +132,7 @@ struct VsmBatch {
   Bilinear8Fn bilinear8;
   PlaneGather planes[3];  // a, b, max_depth
   int n;
-  void operator()(const MapLookupConsts& c, const Receivers8& r, float* out) const {
+  void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[3][4][8], fx[8], fy[8];
     bilinear8(c, r, planes, n, v, fx, fy);
     if (n < 3) std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread

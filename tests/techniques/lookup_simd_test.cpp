@@ -136,7 +136,7 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
   }
 }
 
-// The filtering techniques' 8-lane batches (VSM, ESM, EVSM, MSM: gathers, then the arithmetic in
+// The filtering techniques' 8-lane batches (VSM, ESM, EVSM, MSM, rotated Poisson PCF: gathers, then the arithmetic in
 // AVX2) against their scalar oracle on random maps, blurred by their own filter: bit for bit.
 TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
@@ -146,6 +146,7 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     int moments;
     double bleed;
     MsmKeys msm = {};
+    int poisson_pcf = 0;  // > 0: depth compare with rotated Poisson PCF of this width
   };
   for (const Config& cfg : {Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 2, 0.0},
                             Config{FaceLayoutKind::Cube, MapFilter::ExponentialVariance, 4, 0.2},
@@ -159,7 +160,9 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
                             Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0,
                                    MsmKeys{true, true, 3e-5}},
                             Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0,
-                                   MsmKeys{false, false, 0.0}}}) {
+                                   MsmKeys{false, false, 0.0}},
+                            Config{FaceLayoutKind::Cube, MapFilter::Depth, 2, 0.0, {}, 5},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Depth, 2, 0.0, {}, 3}}) {
     const Case c = random_case(4096, 5, false);
     MapParams p = default_map_params(cfg.layout, cfg.filter);
     p.res = 64;
@@ -167,6 +170,11 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     p.evsm.bleed = p.vsm.bleed = cfg.bleed;
     p.evsm.c_pos = 20.0;  // the random depths' spread: bounds strictly inside (0, 1)
     p.msm = cfg.msm;
+    if (cfg.poisson_pcf > 0) {
+      p.pcf = cfg.poisson_pcf;
+      p.pcf_kind = PcfKind::Poisson;
+      p.seams = SeamMode::Guard;
+    }
     LightMap map = threshold_map(c, p, 13);
     filter_light_map(p, map);
     ImageF scalar_mask, simd_mask;

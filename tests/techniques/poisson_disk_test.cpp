@@ -29,11 +29,12 @@ TEST(PoissonDisk, RotationDependsOnThePixelOnly) {
   const int n = 4096;
   int quadrant[4] = {0, 0, 0, 0};
   double mean_c = 0.0, mean_s = 0.0;
+  int same_as_next = 0;
   for (int i = 0; i < n; ++i) {
     const vec2 r = poisson_rotation(size_t(i));
     EXPECT_NEAR(glm::length(r), 1.0f, 1e-6f);
     EXPECT_EQ(poisson_rotation(size_t(i)), r);
-    EXPECT_NE(poisson_rotation(size_t(i) + 1), r);
+    same_as_next += poisson_rotation(size_t(i) + 1) == r;
     ++quadrant[(r.x >= 0.0f ? 0 : 1) + (r.y >= 0.0f ? 0 : 2)];
     mean_c += r.x / n;
     mean_s += r.y / n;
@@ -41,6 +42,9 @@ TEST(PoissonDisk, RotationDependsOnThePixelOnly) {
   // Uniform angles: each quadrant holds n/4 ± a few σ (σ = √(n·3/16) ≈ 28), the mean vector ~0
   // (σ of each mean ≈ 0.011).
   for (const int q : quadrant) EXPECT_NEAR(q, n / 4, 100) << q;
+  // One of 4096 angles per pixel: neighbours share one by chance about once in 4096 pairs
+  // (measured 2); one angle per 8 pixels would share 7 of every 8.
+  EXPECT_LE(same_as_next, 8);
   EXPECT_NEAR(mean_c, 0.0, 0.04);
   EXPECT_NEAR(mean_s, 0.0, 0.04);
 }
