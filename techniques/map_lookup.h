@@ -38,12 +38,8 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
                    ImageF& mask, ImageU32* texels, const Visibility& visibility,
                    const Batch& batch = Batch{}) {
   const FaceLayout& L = map.layout;
-  // The AVX2 receivers carry no plane gradient (rpdb) and know only perspective faces: rpdb and
-  // the paraboloid layout take the scalar loop.
-  const Receivers8Fn receivers8 =
-      p.normal <= 0.0f && !p.rpdb && p.layout != FaceLayoutKind::DualParaboloid
-          ? receivers8_simd()
-          : nullptr;
+  // The AVX2 receivers carry no plane gradient: rpdb takes the scalar loop.
+  const Receivers8Fn receivers8 = p.normal <= 0.0f && !p.rpdb ? receivers8_simd() : nullptr;
   if (!receivers8) {
     lookup_faces(scene, g, L, p, mask, texels, visibility, [](size_t, size_t) { return size_t(0); });
     return;

@@ -180,6 +180,11 @@ SL_AVX2 inline Front front(const MapLookupConsts& c, const float* pos, const flo
                                               _mm256_castps_si256(ymaj)),
                            _mm256_setzero_si256(), _mm256_castps_si256(xmaj)),
         _mm256_and_si256(_mm256_castps_si256(neg), _mm256_set1_epi32(1)));
+  } else if (c.kind == FaceLayoutKind::DualParaboloid) {
+    // face_of: the hemisphere of face 0 (dir·forward >= 0, the rim included) or face 1.
+    const __m256 d = dot3(tx, ty, tz, set(c.fwd[0][0]), set(c.fwd[1][0]), set(c.fwd[2][0]));
+    face = _mm256_andnot_si256(_mm256_castps_si256(_mm256_cmp_ps(d, zero, _CMP_GE_OQ)),
+                               _mm256_set1_epi32(1));
   } else if (c.kind == FaceLayoutKind::Tetrahedron) {
     // argmax of dot(dir, normal), ties to the lower index.
     __m256 best = dot3(tx, ty, tz, set(c.fwd[0][0]), set(c.fwd[1][0]), set(c.fwd[2][0]));
@@ -200,7 +205,11 @@ SL_AVX2 inline void texel_coords(const MapLookupConsts& c, const Front& f, __m25
                                  __m256& axial) {
   const __m256i face = f.face;
   axial = dot3(f.tx, f.ty, f.tz, lane(c.fwd[0], face), lane(c.fwd[1], face), lane(c.fwd[2], face));
-  const __m256 inv = _mm256_div_ps(set(1.0f), axial);
+  // The paraboloid map divides by |dir| + dir·forward, the gnomonic one by dir·forward.
+  const __m256 den = c.kind == FaceLayoutKind::DualParaboloid
+                         ? _mm256_add_ps(_mm256_sqrt_ps(dot3(f.tx, f.ty, f.tz, f.tx, f.ty, f.tz)), axial)
+                         : axial;
+  const __m256 inv = _mm256_div_ps(set(1.0f), den);
   const __m256 u = _mm256_mul_ps(dot3(f.tx, f.ty, f.tz, lane(c.right[0], face), lane(c.right[1], face),
                                       lane(c.right[2], face)), inv);
   const __m256 v = _mm256_mul_ps(dot3(f.tx, f.ty, f.tz, lane(c.up[0], face), lane(c.up[1], face),
@@ -238,10 +247,22 @@ SL_AVX2 inline R8 receivers(const MapLookupConsts& c, const float* pos, const fl
   const __m256 tan_t = _mm256_min_ps(
       _mm256_div_ps(_mm256_sqrt_ps(_mm256_sub_ps(one, _mm256_mul_ps(cos_t, cos_t))), cos_t), set(10.0f));
   const __m256 k = set(c.slope_k), plane = set(c.plane_texel);
-  const __m256 slope_bias =
-      c.kind == FaceLayoutKind::Cube
-          ? _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(k, plane), dist), tan_t)
-          : _mm256_mul_ps(_mm256_mul_ps(k, _mm256_mul_ps(plane, axial)), tan_t);
+  __m256 slope_bias;
+  if (c.kind == FaceLayoutKind::Cube) {
+    slope_bias = _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(k, plane), dist), tan_t);
+  } else if (c.kind == FaceLayoutKind::DualParaboloid) {
+    // plane texel × dist × 2/(1 + u² + v²), (u, v) = face_plane_coords(st).
+    const __m256i face = f.face;
+    const __m256 u = _mm256_add_ps(lane(c.left, face), _mm256_mul_ps(_mm256_div_ps(r.sx, lane(c.width_f, face)),
+                                                                     lane(c.range_u, face)));
+    const __m256 v = _mm256_sub_ps(lane(c.top, face), _mm256_mul_ps(_mm256_div_ps(r.sy, lane(c.height_f, face)),
+                                                                    lane(c.range_v, face)));
+    const __m256 q = _mm256_add_ps(one, _mm256_add_ps(_mm256_mul_ps(u, u), _mm256_mul_ps(v, v)));
+    const __m256 size = _mm256_div_ps(_mm256_mul_ps(_mm256_mul_ps(plane, dist), set(2.0f)), q);
+    slope_bias = _mm256_mul_ps(_mm256_mul_ps(k, size), tan_t);
+  } else {
+    slope_bias = _mm256_mul_ps(_mm256_mul_ps(k, _mm256_mul_ps(plane, axial)), tan_t);
+  }
   r.depth = _mm256_mul_ps(_mm256_sub_ps(dist, _mm256_add_ps(set(c.bias), slope_bias)), set(c.inv_far));
   return r;
 }

@@ -101,7 +101,9 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
                             Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f, 1},
                             Config{FaceLayoutKind::Tetrahedron, 0.003f, 2.5f, 5},
                             Config{FaceLayoutKind::Projector, 0.01f, 1.0f, 1},
-                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f, 3}}) {
+                            Config{FaceLayoutKind::Projector, 0.01f, 1.0f, 3},
+                            Config{FaceLayoutKind::DualParaboloid, 0.01f, 1.0f, 1},
+                            Config{FaceLayoutKind::DualParaboloid, 0.003f, 2.5f, 3}}) {
     const bool projector = cfg.layout == FaceLayoutKind::Projector;
     const Case c = random_case(4096, 7, projector);
     MapParams p = default_map_params(cfg.layout, MapFilter::Depth);
@@ -162,7 +164,9 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
                             Config{FaceLayoutKind::Cube, MapFilter::Moment, 2, 0.0,
                                    MsmKeys{false, false, 0.0}},
                             Config{FaceLayoutKind::Cube, MapFilter::Depth, 2, 0.0, {}, 5},
-                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Depth, 2, 0.0, {}, 3}}) {
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Depth, 2, 0.0, {}, 3},
+                            Config{FaceLayoutKind::DualParaboloid, MapFilter::Variance, 2, 0.1},
+                            Config{FaceLayoutKind::DualParaboloid, MapFilter::Depth, 2, 0.0, {}, 5}}) {
     const Case c = random_case(4096, 5, false);
     MapParams p = default_map_params(cfg.layout, cfg.filter);
     p.res = 64;
