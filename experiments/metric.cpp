@@ -6,6 +6,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
+#include "metric/contour_image.h"
 #include "metric/metric_report.h"
 
 using namespace shadowlab;
@@ -20,6 +21,12 @@ int main(int argc, char** argv) {
     std::optional<int> repeats;
     add_text(cl, "--texels", "T.exr", "texel-index image of the test mask (detail score; else detail = 1)", texels_path, &texels_given);
     add_switch(cl, "--json", "print one JSON object instead of the table", json);
+    std::string contours_path;
+    bool contours_given = false;
+    add_text(cl, "--contours", "OUT.png",
+             "also write the reference's 10 %/90 % contours (black) and the test's (white) over "
+             "red where the test is lighter, blue where darker (metric/contour_image.h)",
+             contours_path, &contours_given);
     add_double(cl, "--shadow-ms", "MS", "shadow time T_shadowed - T_unshadowed in ms (adds the performance score)", shadow_ms, 0.0, 1e9);
     add_double(cl, "--fps", "F", "target frame rate for the performance score (default 30)", w.target_fps, 1e-3, 1e6);
     add_int(cl, "--repeats", "N", "timed runs of compute_metric, the median printed on stderr (default: not timed)", repeats, 1, 100000);
@@ -44,6 +51,7 @@ int main(int argc, char** argv) {
     if (repeats)
       std::fprintf(stderr, "compute_metric %dx%d: median %.2f ms over %d runs, %d threads\n",
                    test.width, test.height, ms, *repeats, thread_count());
+    if (contours_given) write_png_rgb(contours_path, contour_comparison(test, ref));
     std::printf("%s\n", json ? metric_report_json(r).c_str()
                                             : metric_report_table(r).c_str());
     return 0;
