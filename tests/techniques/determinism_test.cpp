@@ -39,7 +39,8 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
                              "cevsm:res=128,moments=4,bleed=0.1", "tmsm:res=128,variant=hausdorff",
                              "cmsm:res=128,quantize16=1", "cpcss:res=128,light_size=0.1",
                              "tpcss:res=128,light_size=0.2,rpdb=0", "csm:res=128,pcf=3,rpdb=1",
-                             "tsm:res=128,pcf=5,pcf_kind=poisson,rpdb=1"})
+                             "tsm:res=128,pcf=5,pcf_kind=poisson,rpdb=1", "dsm:res=128,tess=8",
+                             "dvsm:res=128", "dpcss:res=128,light_size=0.1"})
       o.family.push_back(test::run(spec, scene, o.g));
     outs.push_back(std::move(o));
   }
