@@ -40,7 +40,18 @@ MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, Map
   p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
   p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
   p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
-  if (layout == FaceLayoutKind::DualParaboloid) p.tess = r.get_int("tess", p.tess, 0, 4096);
+  if (layout == FaceLayoutKind::DualParaboloid) {
+    p.tess = r.get_int("tess", p.tess, 0, 4096);
+    // Split pieces have images of at most tess texels, so a face of E² texels ends with about
+    // 2·E²/tess² of them (plus the input triangles): bound that before any work (32M pieces,
+    // ~1.2 GB of vertices per face).
+    const double e = double(paraboloid_face_edge(p.res));
+    const double pieces = p.tess > 0 ? 2.0 * e * e / (double(p.tess) * double(p.tess)) : 0.0;
+    if (pieces > 3.2e7)
+      throw InputError(flag, fmt::format("{}: 'tess={}' at res={} would split each face into ~{:.0f}M "
+                                         "triangles (limit 32M): raise tess or lower res",
+                                         n, p.tess, p.res, pieces / 1e6));
+  }
   // The filter's own keys (techniques/map_filter.h).
   map_filter_ops(filter).parse_keys(r, n, flag, p);
   r.reject_unknown();

@@ -168,7 +168,7 @@ TEST(FaceMaps, BadParametersAreRejected) {
                           "cpcss:light_size=-1", "cpcss:light_size=lamp", "cpcss:taps=0",
                           "cpcss:search_near=1", "tpcss:blur=3", "csm:rpdb=1,seams=cross",
                           "csm:rpdb=1,slope=2", "cvsm:rpdb=1", "csm:tess=4", "dsm:tess=-1",
-                          "dvsm:tess=5000"}) {
+                          "dvsm:tess=5000", "dsm:res=4096,tess=1"}) {
     EXPECT_THROW(validate_technique(parse_technique_spec(bad, "--technique"), "--technique"),
                  InputError)
         << bad;
