@@ -38,8 +38,14 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
                    ImageF& mask, ImageU32* texels, const Visibility& visibility,
                    const Batch& batch = Batch{}) {
   const FaceLayout& L = map.layout;
-  // The AVX2 receivers carry no plane gradient: rpdb takes the scalar loop.
-  const Receivers8Fn receivers8 = p.normal <= 0.0f && !p.rpdb ? receivers8_simd() : nullptr;
+  // The AVX2 receivers carry no plane gradient: rpdb takes the scalar loop, unless the batch
+  // computes each lane's gradient itself (Batch::kComputesGradient) and takes every lane.
+  constexpr bool batch_gradient = [] {
+    if constexpr (requires { Batch::kComputesGradient; }) return Batch::kComputesGradient;
+    return false;
+  }();
+  const Receivers8Fn receivers8 =
+      p.normal <= 0.0f && (!p.rpdb || batch_gradient) ? receivers8_simd() : nullptr;
   if (!receivers8) {
     lookup_faces(scene, g, L, p, mask, texels, visibility, [](size_t, size_t) { return size_t(0); });
     return;

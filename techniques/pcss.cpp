@@ -6,6 +6,9 @@
 // random number (core/rng.h), never the thread. README "PCSS" gives the geometry.
 #include <algorithm>
 #include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include <fmt/format.h>
 
@@ -90,31 +93,54 @@ inline float compare_at(const PcssContext& c, const Receiver& r, vec2 st) {
          b.fy * ((1.0f - b.fx) * at(b.x0, b.y1) + b.fx * at(b.x1, b.y1));
 }
 
-// The four stages for one receiver. Angles (radians, seen from the light) become texels by the
-// face's texels per plane unit × ρ, ρ = √(1 + u² + v²) the distance from the light to the
-// receiver's point on the unit image plane (the isotropic, tangential scale of the gnomonic
-// map; radially it stretches by another ρ, ignored).
-float pcss_visibility(const PcssContext& c, const Receiver& r) {
+// Per-receiver quantities of the four stages. Angles (radians, seen from the light) become
+// texels by the face's texels per plane unit × ρ, ρ = √(1 + u² + v²) the distance from the light
+// to the receiver's point on the unit image plane (the isotropic, tangential scale of the
+// gnomonic map; radially it stretches by another ρ, ignored).
+struct PcssLane {
+  double t;                 // the receiver's depth
+  float texels_per_radian;
+  float max_radius;         // half a face
+  float search_radius;      // texels
+  vec2 rot_s, rot;          // the search disk's and the PCF disk's rotations
+};
+
+PcssLane pcss_lane(const PcssContext& c, const Receiver& r) {
   const LightFace& f = c.layout.faces[size_t(r.face)];
+  PcssLane l;
   const float per_plane = float(f.width) / (f.right_edge - f.left);  // texels per plane unit
   const float u = f.left + r.st.x / per_plane;
   const float v = f.top - r.st.y * (f.top - f.bottom) / float(f.height);
   // (The paraboloid map is conformal, with 2/(1 + u² + v²) radians per plane unit.)
-  const float texels_per_radian = f.paraboloid ? per_plane * 0.5f * (1.0f + u * u + v * v)
-                                               : per_plane * std::sqrt(1.0f + u * u + v * v);
-  const double t = double(r.depth);
-  const float max_radius = 0.5f * float(std::max(f.width, f.height));
+  l.texels_per_radian = f.paraboloid ? per_plane * 0.5f * (1.0f + u * u + v * v)
+                                     : per_plane * std::sqrt(1.0f + u * u + v * v);
+  l.t = double(r.depth);
+  l.max_radius = 0.5f * float(std::max(f.width, f.height));
   // 1. Blocker search: blockers at s·t or farther can hide part of the light from the receiver
   //    only within the angle R·(t − s·t)/(s·t·t) of its direction.
   const double s = c.search_near;
-  const float search_radius = std::clamp(
-      float(c.radius * (1.0 - s) / (s * t)) * texels_per_radian, 1.0f, max_radius);
-  const vec2 rot_s = poisson_rotation(r.pixel ^ (size_t(1) << 62));
+  l.search_radius = std::clamp(float(c.radius * (1.0 - s) / (s * l.t)) * l.texels_per_radian,
+                               1.0f, l.max_radius);
+  l.rot_s = poisson_rotation(r.pixel ^ (size_t(1) << 62));
+  l.rot = poisson_rotation(r.pixel);
+  return l;
+}
+
+// 2–3. Mean blocker distance and the penumbra's angular radius R·(t − t_b)/(t_b·t), in texels.
+float pcss_radius(const PcssContext& c, const PcssLane& l, double blocker_sum, int blockers) {
+  const double tb = blocker_sum / double(blockers);
+  return std::clamp(float(c.radius * (l.t - tb) / (tb * l.t)) * l.texels_per_radian, 1.0f,
+                    l.max_radius);
+}
+
+// The four stages for one receiver (the scalar oracle of the batch below).
+float pcss_visibility(const PcssContext& c, const Receiver& r) {
+  const PcssLane l = pcss_lane(c, r);
   double blocker_sum = 0.0;
   int blockers = 0;
   for (const vec2& q : c.search.points) {
-    const vec2 st(r.st.x + search_radius * (rot_s.x * q.x - rot_s.y * q.y),
-                  r.st.y + search_radius * (rot_s.y * q.x + rot_s.x * q.y));
+    const vec2 st(r.st.x + l.search_radius * (l.rot_s.x * q.x - l.rot_s.y * q.y),
+                  r.st.y + l.search_radius * (l.rot_s.y * q.x + l.rot_s.x * q.y));
     const float z = depth_at(c, r.face, st);
     if (z < r.depth + glm::dot(r.grad, st - r.st)) {  // grad: rpdb's plane (else 0)
       blocker_sum += double(z);
@@ -122,20 +148,205 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
     }
   }
   if (blockers == 0) return 1.0f;
-  // 2–3. Mean blocker distance and the penumbra's angular radius R·(t − t_b)/(t_b·t).
-  const double tb = blocker_sum / double(blockers);
-  const float radius =
-      std::clamp(float(c.radius * (t - tb) / (tb * t)) * texels_per_radian, 1.0f, max_radius);
+  const float radius = pcss_radius(c, l, blocker_sum, blockers);
   // 4. Rotated Poisson PCF over that radius.
-  const vec2 rot = poisson_rotation(r.pixel);
   float lit = 0.0f;
   for (const vec2& q : c.taps.points) {
-    const vec2 st(r.st.x + radius * (rot.x * q.x - rot.y * q.y),
-                  r.st.y + radius * (rot.y * q.x + rot.x * q.y));
+    const vec2 st(r.st.x + radius * (l.rot.x * q.x - l.rot.y * q.y),
+                  r.st.y + radius * (l.rot.y * q.x + l.rot.x * q.y));
     lit += compare_at(c, r, st);
   }
   return lit / float(c.taps.points.size());
 }
+
+#if defined(__x86_64__)
+#define SL_AVX2 __attribute__((target("avx2")))
+SL_AVX2 inline __m256i pcss_face_table(const int32_t* t, __m256i face) {
+  return _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(t)), face);
+}
+// Lanes whose tap (x, y) lies outside [1, w − 1] × [1, h − 1], where tap_face would look it up in
+// another face (those lanes take the scalar stages).
+SL_AVX2 inline __m256 pcss_outside(__m256 x, __m256 y, __m256 wm1, __m256 hm1) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 in = _mm256_and_ps(
+      _mm256_and_ps(_mm256_cmp_ps(x, one, _CMP_GE_OQ), _mm256_cmp_ps(y, one, _CMP_GE_OQ)),
+      _mm256_and_ps(_mm256_cmp_ps(x, wm1, _CMP_LE_OQ), _mm256_cmp_ps(y, hm1, _CMP_LE_OQ)));
+  return _mm256_xor_ps(in, _mm256_castsi256_ps(_mm256_set1_epi32(-1)));
+}
+
+// The stages for the 8 lanes of a batch whose taps stay in their face's image, in the scalar
+// code's operations and order: `lanes` are the per-lane quantities, gx/gy the plane gradients.
+// Returns the lanes left to the scalar code (a tap outside the image, or stage 4 skipped:
+// no blocker) in `rest`, and the others' visibility in out.
+SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, const Receivers8& r,
+                             const PcssLane* lanes, const float* gxv, const float* gyv,
+                             const int* active, float* out, bool* rest) {
+  alignas(32) float rs[8], cs_s[8], sn_s[8], cs[8], sn[8];
+  for (int k = 0; k < 8; ++k) {
+    rs[k] = lanes[k].search_radius;
+    cs_s[k] = lanes[k].rot_s.x;
+    sn_s[k] = lanes[k].rot_s.y;
+    cs[k] = lanes[k].rot.x;
+    sn[k] = lanes[k].rot.y;
+  }
+  const __m256i zero_i = _mm256_setzero_si256();
+  const __m256i act = _mm256_setr_epi32(active[0], active[1], active[2], active[3], active[4],
+                                        active[5], active[6], active[7]);
+  __m256 live = _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(act, zero_i),
+                                                     _mm256_set1_epi32(-1)));
+  const __m256i face = _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)),
+                                        _mm256_castps_si256(live));
+  const __m256i width = pcss_face_table(mc.width, face), height = pcss_face_table(mc.height, face);
+  const __m256i offset = pcss_face_table(mc.offset, face);
+  const __m256 wm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(width), _mm256_set1_ps(1.0f));
+  const __m256 hm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(height), _mm256_set1_ps(1.0f));
+  const __m256 sx = _mm256_load_ps(r.sx), sy = _mm256_load_ps(r.sy);
+  const __m256 depth = _mm256_load_ps(r.depth);
+  const __m256 gx = _mm256_loadu_ps(gxv), gy = _mm256_loadu_ps(gyv);
+  // 1. Blocker search.
+  __m256 outside = _mm256_setzero_ps();
+  __m256d sum_lo = _mm256_setzero_pd(), sum_hi = _mm256_setzero_pd();
+  __m256i count = zero_i;
+  {
+    const __m256 rad = _mm256_load_ps(rs), c0 = _mm256_load_ps(cs_s), s0 = _mm256_load_ps(sn_s);
+    for (const vec2& q : c.search.points) {
+      const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
+      const __m256 tx = _mm256_add_ps(sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(c0, qx), _mm256_mul_ps(s0, qy))));
+      const __m256 ty = _mm256_add_ps(sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(s0, qx), _mm256_mul_ps(c0, qy))));
+      outside = _mm256_or_ps(outside, pcss_outside(tx, ty, wm1, hm1));
+      const __m256 ok = _mm256_andnot_ps(outside, live);
+      // Nearest texel: inside the image st >= 1, so truncation is clamp_texel's floor.
+      const __m256i ix = _mm256_cvttps_epi32(tx), iy = _mm256_cvttps_epi32(ty);
+      const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(iy, width), ix));
+      const __m256 z = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), mc.depth_base, idx, ok, 4);
+      const __m256 thr = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(tx, sx)),
+                                                            _mm256_mul_ps(gy, _mm256_sub_ps(ty, sy))));
+      const __m256 blocker = _mm256_and_ps(_mm256_cmp_ps(z, thr, _CMP_LT_OQ), ok);
+      const __m256 zb = _mm256_and_ps(z, blocker);  // +0 where not a blocker
+      sum_lo = _mm256_add_pd(sum_lo, _mm256_cvtps_pd(_mm256_castps256_ps128(zb)));
+      sum_hi = _mm256_add_pd(sum_hi, _mm256_cvtps_pd(_mm256_extractf128_ps(zb, 1)));
+      count = _mm256_sub_epi32(count, _mm256_castps_si256(blocker));
+    }
+  }
+  alignas(32) double sums[8];
+  alignas(32) int32_t counts[8];
+  alignas(32) float out_mask[8];
+  _mm256_store_pd(sums, sum_lo);
+  _mm256_store_pd(sums + 4, sum_hi);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(counts), count);
+  _mm256_store_ps(out_mask, outside);
+  // 2–3 per lane; lanes with a tap outside, or none active, leave the batch.
+  alignas(32) float radius[8];
+  for (int k = 0; k < 8; ++k) {
+    radius[k] = 0.0f;
+    rest[k] = active[k] && out_mask[k] != 0.0f;
+    if (!active[k] || rest[k]) continue;
+    if (counts[k] == 0) {
+      out[k] = 1.0f;
+      continue;
+    }
+    radius[k] = pcss_radius(c, lanes[k], sums[k], counts[k]);
+  }
+  alignas(32) int32_t pcf_lanes[8];  // lanes that go on to stage 4 here
+  for (int k = 0; k < 8; ++k) pcf_lanes[k] = active[k] && !rest[k] && counts[k] > 0 ? -1 : 0;
+  live = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(pcf_lanes)));
+  if (_mm256_movemask_ps(live) == 0) return;
+  // 4. Rotated Poisson PCF over each lane's radius.
+  const __m256 rad = _mm256_load_ps(radius), c1 = _mm256_load_ps(cs), s1 = _mm256_load_ps(sn);
+  const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+  const __m256i one_i = _mm256_set1_epi32(1);
+  __m256 outside4 = _mm256_setzero_ps();
+  __m256 lit = _mm256_setzero_ps();
+  for (const vec2& q : c.taps.points) {
+    const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
+    const __m256 tx = _mm256_add_ps(sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(c1, qx), _mm256_mul_ps(s1, qy))));
+    const __m256 ty = _mm256_add_ps(sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(s1, qx), _mm256_mul_ps(c1, qy))));
+    outside4 = _mm256_or_ps(outside4, pcss_outside(tx, ty, wm1, hm1));
+    const __m256 ok = _mm256_andnot_ps(outside4, live);
+    // bilinear_taps inside the image: floor is truncation, no clamping.
+    const __m256 bx = _mm256_sub_ps(tx, half), by = _mm256_sub_ps(ty, half);
+    const __m256i x0 = _mm256_cvttps_epi32(bx), y0 = _mm256_cvttps_epi32(by);
+    const __m256 fx = _mm256_sub_ps(bx, _mm256_cvtepi32_ps(x0));
+    const __m256 fy = _mm256_sub_ps(by, _mm256_cvtepi32_ps(y0));
+    const __m256i x1 = _mm256_add_epi32(x0, one_i), y1 = _mm256_add_epi32(y0, one_i);
+    __m256 a[4];
+    const __m256i xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
+    for (int i = 0; i < 4; ++i) {
+      const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(ys[i], width), xs[i]));
+      const __m256 d = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), mc.depth_base, idx, ok, 4);
+      const __m256 cx = _mm256_add_ps(_mm256_cvtepi32_ps(xs[i]), half);
+      const __m256 cy = _mm256_add_ps(_mm256_cvtepi32_ps(ys[i]), half);
+      const __m256 dt = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(cx, sx)),
+                                                           _mm256_mul_ps(gy, _mm256_sub_ps(cy, sy))));
+      a[i] = _mm256_and_ps(_mm256_cmp_ps(dt, d, _CMP_LE_OQ), one);
+    }
+    const __m256 ofx = _mm256_sub_ps(one, fx), ofy = _mm256_sub_ps(one, fy);
+    const __m256 top = _mm256_add_ps(_mm256_mul_ps(ofx, a[0]), _mm256_mul_ps(fx, a[1]));
+    const __m256 bot = _mm256_add_ps(_mm256_mul_ps(ofx, a[2]), _mm256_mul_ps(fx, a[3]));
+    lit = _mm256_add_ps(lit, _mm256_add_ps(_mm256_mul_ps(ofy, top), _mm256_mul_ps(fy, bot)));
+  }
+  alignas(32) float res[8], out4[8], live_f[8];
+  _mm256_store_ps(res, _mm256_div_ps(lit, _mm256_set1_ps(float(c.taps.points.size()))));
+  _mm256_store_ps(out4, outside4);
+  _mm256_store_ps(live_f, live);
+  for (int k = 0; k < 8; ++k) {
+    if (live_f[k] == 0.0f) continue;
+    if (out4[k] != 0.0f)
+      rest[k] = true;
+    else
+      out[k] = res[k];
+  }
+}
+#endif
+
+// 8 lanes at once: each lane's receiver-plane gradient as make_receiver computes it (from the
+// GBuffer's position and geometric normal; the AVX2 receivers carry none), its per-lane
+// quantities (pcss_lane), then pcss_batch_avx2; lanes with a tap outside their face's image
+// take pcss_visibility whole.
+struct PcssBatch {
+  static constexpr bool kEnabled = true;
+  static constexpr bool kComputesGradient = true;
+  const PcssContext* ctx;
+  const Scene* scene;
+  const GBuffer* g;
+  bool rpdb;
+  void operator()(const MapLookupConsts& mc, const Receivers8& r, size_t first, float* out) const {
+    Receiver rc[8];
+    PcssLane lanes[8];
+    float gxv[8], gyv[8];
+    int active[8];
+    const float inv_far = 1.0f / scene->light.far;
+    for (int k = 0; k < 8; ++k) {
+      active[k] = r.active[k] != 0;
+      gxv[k] = gyv[k] = 0.0f;
+      if (!active[k]) {
+        lanes[k] = PcssLane{1.0, 0.0f, 0.0f, 1.0f, vec2(1.0f, 0.0f), vec2(1.0f, 0.0f)};
+        continue;
+      }
+      const size_t i = first + size_t(k);
+      rc[k] = lane_receiver(r, k, i);
+      if (rpdb) {
+        const LightFace& f = ctx->layout.faces[size_t(rc[k].face)];
+        const vec3 to_p = g->position[i] - scene->light.position;
+        rc[k].grad = f.paraboloid
+                         ? receiver_plane_gradient_numeric(f, rc[k].st, to_p, g->geo_normal[i], inv_far)
+                         : receiver_plane_gradient(f, to_p, g->geo_normal[i], inv_far);
+      }
+      gxv[k] = rc[k].grad.x;
+      gyv[k] = rc[k].grad.y;
+      lanes[k] = pcss_lane(*ctx, rc[k]);
+    }
+    bool rest[8] = {};
+#if defined(__x86_64__)
+    if (mc.gather_ok)
+      pcss_batch_avx2(mc, *ctx, r, lanes, gxv, gyv, active, out, rest);
+    else
+      for (int k = 0; k < 8; ++k) rest[k] = active[k];
+#endif
+    for (int k = 0; k < 8; ++k)
+      if (rest[k]) out[k] = pcss_visibility(*ctx, rc[k]);
+  }
+};
 
 void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
             ImageF& mask, ImageU32* texels) {
@@ -146,8 +357,11 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
                       poisson_disk(p.pcss.taps),
                       light / double(scene.light.far),
                       p.pcss.search_near};
-  lookup_pixels(scene, g, p, map, mask, texels,
-                [&](const Receiver& r) { return pcss_visibility(c, r); });
+  auto visibility = [&](const Receiver& r) { return pcss_visibility(c, r); };
+  if (receivers8_simd())
+    lookup_pixels(scene, g, p, map, mask, texels, visibility, PcssBatch{&c, &scene, &g, p.rpdb});
+  else
+    lookup_pixels(scene, g, p, map, mask, texels, visibility);
 }
 
 // Search taps read 1 texel, PCF taps 2×2.

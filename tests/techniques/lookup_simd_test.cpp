@@ -166,7 +166,11 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
                             Config{FaceLayoutKind::Cube, MapFilter::Depth, 2, 0.0, {}, 5},
                             Config{FaceLayoutKind::Tetrahedron, MapFilter::Depth, 2, 0.0, {}, 3},
                             Config{FaceLayoutKind::DualParaboloid, MapFilter::Variance, 2, 0.1},
-                            Config{FaceLayoutKind::DualParaboloid, MapFilter::Depth, 2, 0.0, {}, 5}}) {
+                            Config{FaceLayoutKind::DualParaboloid, MapFilter::Depth, 2, 0.0, {}, 5},
+                            Config{FaceLayoutKind::Cube, MapFilter::Pcss, 2, 0.0},
+                            Config{FaceLayoutKind::Tetrahedron, MapFilter::Pcss, 2, 0.0},
+                            Config{FaceLayoutKind::DualParaboloid, MapFilter::Pcss, 2, 0.0},
+                            Config{FaceLayoutKind::Cube, MapFilter::Pcss, 4, 0.0}}) {
     const Case c = random_case(4096, 5, false);
     MapParams p = default_map_params(cfg.layout, cfg.filter);
     p.res = 64;
@@ -174,6 +178,8 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     p.evsm.bleed = p.vsm.bleed = cfg.bleed;
     p.evsm.c_pos = 20.0;  // the random depths' spread: bounds strictly inside (0, 1)
     p.msm = cfg.msm;
+    p.pcss.light_size = 0.2;                           // penumbrae several texels wide
+    if (cfg.filter == MapFilter::Pcss && cfg.moments == 4) p.rpdb = false;  // the slope-bias form
     if (cfg.poisson_pcf > 0) {
       p.pcf = cfg.poisson_pcf;
       p.pcf_kind = PcfKind::Poisson;
