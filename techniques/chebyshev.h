@@ -42,6 +42,17 @@ inline void mixture_moments(const double w[4], const float* A, const float* B, d
 }
 
 #if defined(__x86_64__)
+// bilinear_weights for 4 lanes in double (fx, fy already widened from float).
+__attribute__((target("avx2"))) inline void bilinear_weights4(__m256d fx, __m256d fy,
+                                                              __m256d w[4]) {
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
+  w[0] = _mm256_mul_pd(ox, oy);
+  w[1] = _mm256_mul_pd(fx, oy);
+  w[2] = _mm256_mul_pd(ox, fy);
+  w[3] = _mm256_mul_pd(fx, fy);
+}
+
 // mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits.
 __attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, const __m256d* A,
                                                              const __m256d* B, __m256d& mean,

@@ -11,6 +11,7 @@
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 #include "techniques/poisson_disk.h"
+#include "techniques/tap_avx2.h"
 
 namespace shadowlab {
 namespace {
@@ -74,23 +75,13 @@ float poisson_visibility(const LightFace& f, const float* dist, const Receiver& 
 // its float operations in its order: the tap's coordinates, bilinear_taps (floor_int, clamp to
 // the face), the four compares as gathers from the stored distances, the weighted sum, the
 // mean. cosv/sinv: each lane's rotation (poisson_rotation of its pixel).
-SL_AVX2 inline __m256i face_table(const int32_t* t, __m256i face) {
-  return _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(t)), face);
-}
 SL_AVX2 inline __m256i clamp_to(__m256i v, __m256i hi) {
   return _mm256_min_epi32(_mm256_max_epi32(v, _mm256_setzero_si256()), hi);
-}
-// floor_int (map_receiver.h): truncate, step down where the truncation is above g.
-SL_AVX2 inline __m256i floor_to_int(__m256 g) {
-  const __m256i i = _mm256_cvttps_epi32(g);
-  const __m256 above = _mm256_cmp_ps(_mm256_cvtepi32_ps(i), g, _CMP_GT_OQ);
-  return _mm256_add_epi32(i, _mm256_castps_si256(above));
 }
 // 1 where depth <= the stored distance of texel (x, y) of the lane's face, else 0.
 SL_AVX2 inline __m256 lit_at(const MapLookupConsts& c, __m256i offset, __m256i width,
                              __m256 gather_mask, __m256 depth, __m256i x, __m256i y) {
-  const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(y, width), x));
-  const __m256 d = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), c.depth_base, idx, gather_mask, 4);
+  const __m256 d = stored_distance(c, offset, width, x, y, gather_mask);
   return _mm256_and_ps(_mm256_cmp_ps(depth, d, _CMP_LE_OQ), _mm256_set1_ps(1.0f));
 }
 
@@ -107,20 +98,17 @@ SL_AVX2 void poisson_batch_avx2(const MapLookupConsts& c, const Receivers8& r, c
   // Inactive lanes read face 0's first texel (masked gathers skip them anyway).
   const __m256i face = _mm256_and_si256(
       _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)), _mm256_castps_si256(gather_mask));
-  const __m256i width = face_table(c.width, face), height = face_table(c.height, face);
-  const __m256i offset = face_table(c.offset, face);
+  const __m256i width = face_lanes(c.width, face), height = face_lanes(c.height, face);
+  const __m256i offset = face_lanes(c.offset, face);
   const __m256i wmax = _mm256_sub_epi32(width, one_i), hmax = _mm256_sub_epi32(height, one_i);
   const __m256 cs = _mm256_loadu_ps(cosv), sn = _mm256_loadu_ps(sinv);
   const __m256 rad = _mm256_set1_ps(radius);
   __m256 lit = _mm256_setzero_ps();
   for (const vec2& q : disk.points) {
-    const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
-    const __m256 tx = _mm256_add_ps(
-        sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(cs, qx), _mm256_mul_ps(sn, qy))));
-    const __m256 ty = _mm256_add_ps(
-        sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(sn, qx), _mm256_mul_ps(cs, qy))));
+    __m256 tx, ty;
+    rotated_tap(sx, sy, rad, cs, sn, q, tx, ty);
     const __m256 gx = _mm256_sub_ps(tx, half), gy = _mm256_sub_ps(ty, half);
-    const __m256i ix = floor_to_int(gx), iy = floor_to_int(gy);
+    const __m256i ix = floor_lanes(gx), iy = floor_lanes(gy);
     const __m256 fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix));
     const __m256 fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy));
     const __m256i x0 = clamp_to(ix, wmax), x1 = clamp_to(_mm256_add_epi32(ix, one_i), wmax);

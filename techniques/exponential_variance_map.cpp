@@ -116,12 +116,10 @@ SL_AVX2 __m256d warp_bound4(const EvsmConsts& k, const __m256d* w, const __m256d
 SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const float* fx,
                              const float* fy, const float* depth, float* out) {
   for (int half = 0; half < 2; ++half) {
-    const __m256d one = _mm256_set1_pd(1.0);
     const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
     const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
-    const __m256d ox = _mm256_sub_pd(one, vx), oy = _mm256_sub_pd(one, vy);
-    const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(vx, oy), _mm256_mul_pd(ox, vy),
-                          _mm256_mul_pd(vx, vy)};
+    __m256d w[4];
+    bilinear_weights4(vx, vy, w);
     const __m256d t = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
     __m256d A[4], B[4];
     for (int i = 0; i < 4; ++i) {

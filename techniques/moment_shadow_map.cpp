@@ -104,9 +104,8 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const fl
     const __m256d one = _mm256_set1_pd(1.0);
     const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
     const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
-    const __m256d ox = _mm256_sub_pd(one, vx), oy = _mm256_sub_pd(one, vy);
-    const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(vx, oy), _mm256_mul_pd(ox, vy),
-                          _mm256_mul_pd(vx, vy)};
+    __m256d w[4];
+    bilinear_weights4(vx, vy, w);
     __m256d m[4];
     for (int j = 0; j < 4; ++j) {
       m[j] = _mm256_setzero_pd();

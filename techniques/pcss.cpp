@@ -16,6 +16,7 @@
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 #include "techniques/poisson_disk.h"
+#include "techniques/tap_avx2.h"
 
 namespace shadowlab {
 namespace {
@@ -161,9 +162,6 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
 
 #if defined(__x86_64__)
 #define SL_AVX2 __attribute__((target("avx2")))
-SL_AVX2 inline __m256i pcss_face_table(const int32_t* t, __m256i face) {
-  return _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(t)), face);
-}
 // Lanes whose tap (x, y) lies outside [1, w − 1] × [1, h − 1], where tap_face would look it up in
 // another face (those lanes take the scalar stages).
 SL_AVX2 inline __m256 pcss_outside(__m256 x, __m256 y, __m256 wm1, __m256 hm1) {
@@ -196,8 +194,8 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
                                                      _mm256_set1_epi32(-1)));
   const __m256i face = _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)),
                                         _mm256_castps_si256(live));
-  const __m256i width = pcss_face_table(mc.width, face), height = pcss_face_table(mc.height, face);
-  const __m256i offset = pcss_face_table(mc.offset, face);
+  const __m256i width = face_lanes(mc.width, face), height = face_lanes(mc.height, face);
+  const __m256i offset = face_lanes(mc.offset, face);
   const __m256 wm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(width), _mm256_set1_ps(1.0f));
   const __m256 hm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(height), _mm256_set1_ps(1.0f));
   const __m256 sx = _mm256_load_ps(r.sx), sy = _mm256_load_ps(r.sy);
@@ -210,15 +208,13 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
   {
     const __m256 rad = _mm256_load_ps(rs), c0 = _mm256_load_ps(cs_s), s0 = _mm256_load_ps(sn_s);
     for (const vec2& q : c.search.points) {
-      const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
-      const __m256 tx = _mm256_add_ps(sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(c0, qx), _mm256_mul_ps(s0, qy))));
-      const __m256 ty = _mm256_add_ps(sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(s0, qx), _mm256_mul_ps(c0, qy))));
+      __m256 tx, ty;
+      rotated_tap(sx, sy, rad, c0, s0, q, tx, ty);
       outside = _mm256_or_ps(outside, pcss_outside(tx, ty, wm1, hm1));
       const __m256 ok = _mm256_andnot_ps(outside, live);
       // Nearest texel: inside the image st >= 1, so truncation is clamp_texel's floor.
       const __m256i ix = _mm256_cvttps_epi32(tx), iy = _mm256_cvttps_epi32(ty);
-      const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(iy, width), ix));
-      const __m256 z = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), mc.depth_base, idx, ok, 4);
+      const __m256 z = stored_distance(mc, offset, width, ix, iy, ok);
       const __m256 thr = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(tx, sx)),
                                                             _mm256_mul_ps(gy, _mm256_sub_ps(ty, sy))));
       const __m256 blocker = _mm256_and_ps(_mm256_cmp_ps(z, thr, _CMP_LT_OQ), ok);
@@ -258,9 +254,8 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
   __m256 outside4 = _mm256_setzero_ps();
   __m256 lit = _mm256_setzero_ps();
   for (const vec2& q : c.taps.points) {
-    const __m256 qx = _mm256_set1_ps(q.x), qy = _mm256_set1_ps(q.y);
-    const __m256 tx = _mm256_add_ps(sx, _mm256_mul_ps(rad, _mm256_sub_ps(_mm256_mul_ps(c1, qx), _mm256_mul_ps(s1, qy))));
-    const __m256 ty = _mm256_add_ps(sy, _mm256_mul_ps(rad, _mm256_add_ps(_mm256_mul_ps(s1, qx), _mm256_mul_ps(c1, qy))));
+    __m256 tx, ty;
+    rotated_tap(sx, sy, rad, c1, s1, q, tx, ty);
     outside4 = _mm256_or_ps(outside4, pcss_outside(tx, ty, wm1, hm1));
     const __m256 ok = _mm256_andnot_ps(outside4, live);
     // bilinear_taps inside the image: floor is truncation, no clamping.
@@ -272,8 +267,7 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
     __m256 a[4];
     const __m256i xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
     for (int i = 0; i < 4; ++i) {
-      const __m256i idx = _mm256_add_epi32(offset, _mm256_add_epi32(_mm256_mullo_epi32(ys[i], width), xs[i]));
-      const __m256 d = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), mc.depth_base, idx, ok, 4);
+      const __m256 d = stored_distance(mc, offset, width, xs[i], ys[i], ok);
       const __m256 cx = _mm256_add_ps(_mm256_cvtepi32_ps(xs[i]), half);
       const __m256 cy = _mm256_add_ps(_mm256_cvtepi32_ps(ys[i]), half);
       const __m256 dt = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(cx, sx)),

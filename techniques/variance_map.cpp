@@ -84,10 +84,9 @@ __attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m
                                                   const __m256d* B, const __m256* M4,
                                                   __m256d fx, __m256d fy, __m256d t,
                                                   int half) {
-  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-  const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
-  const __m256d w[4] = {_mm256_mul_pd(ox, oy), _mm256_mul_pd(fx, oy), _mm256_mul_pd(ox, fy),
-                        _mm256_mul_pd(fx, fy)};
+  const __m256d zero = _mm256_setzero_pd();
+  __m256d w[4];
+  bilinear_weights4(fx, fy, w);
   __m256d mean, var;
   mixture_moments4(w, A, B, mean, var);
   __m256d result = chebyshev4(t, mean, var, _mm256_set1_pd(k.min_var), k.bleed);

@@ -6,11 +6,7 @@
 namespace shadowlab {
 namespace {
 
-double mismatch_rate(const ImageF& a, const ImageF& b) {
-  size_t diff = 0;
-  for (size_t i = 0; i < a.data.size(); ++i) diff += (a.data[i] > 0.5f) != (b.data[i] > 0.5f);
-  return double(diff) / double(a.data.size());
-}
+using test::mismatch_rate;
 
 // A fine cube map (2048² faces for a 160×120 image: several texels per pixel) must agree with
 // one Embree ray per pixel almost everywhere; the residue is shadow-edge pixels and bias.

@@ -20,11 +20,7 @@
 namespace shadowlab {
 namespace {
 
-double mismatch_rate(const ImageF& a, const ImageF& b) {
-  size_t diff = 0;
-  for (size_t i = 0; i < a.data.size(); ++i) diff += (a.data[i] > 0.5f) != (b.data[i] > 0.5f);
-  return double(diff) / double(a.data.size());
-}
+using test::mismatch_rate;
 
 // Every direction lands in the face of its hemisphere (the equator in face 0), at texel
 // coordinates whose direction is the same one (1e-4 rad, float), and the rasterizer's clip

@@ -16,11 +16,7 @@ namespace {
 const char* const kFamily[] = {"tsm",   "cvsm",  "tvsm", "cesm", "tesm",
                                "cevsm", "tevsm", "cmsm", "tmsm"};
 
-double mismatch_rate(const ImageF& a, const ImageF& b) {
-  size_t diff = 0;
-  for (size_t i = 0; i < a.data.size(); ++i) diff += (a.data[i] > 0.5f) != (b.data[i] > 0.5f);
-  return double(diff) / double(a.data.size());
-}
+using test::mismatch_rate;
 
 // A plane with nothing between it and the light is lit by every technique and filter size,
 // including PCF kernels and blurs that reach across face boundaries and map borders.
