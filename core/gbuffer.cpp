@@ -1,5 +1,7 @@
 #include "core/gbuffer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace shadowlab {
@@ -16,6 +18,7 @@ void GBuffer::resize(int w, int h) {
   mesh_id.assign(n, kNoPrimitive);
   prim_id.assign(n, kNoPrimitive);
   covered.assign(n, 0);
+  block_bounds.clear();
 }
 
 void GBuffer::reshape(int w, int h) {
@@ -30,6 +33,7 @@ void GBuffer::reshape(int w, int h) {
   mesh_id.resize(n);
   prim_id.resize(n);
   covered.resize(n);
+  block_bounds.clear();
 }
 
 }  // namespace shadowlab

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/block_bounds.h"
 #include "core/parallel.h"
 #include "raster/alpha_test.h"
 #include "raster/gbuffer_resolve_simd.h"
@@ -64,7 +65,10 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   const std::vector<uint32_t> first = scene_first_triangles(scene);
   const PixelRays rays(cam);
   const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
-  parallel_for_chunks(size_t(h), 8, [&](size_t y0, size_t y1) {
+  // Chunks of one block row each: a chunk also leaves the position bounds of its blocks
+  // (GBuffer::block_bounds), from the positions while they are in registers.
+  g.block_bounds.assign(size_t(g.blocks_x()) * size_t(g.blocks_y()), BlockBounds{});
+  parallel_for_chunks(size_t(h), size_t(kGBufferBlock), [&](size_t y0, size_t y1) {
     uint32_t m = 0;
     struct {
       uint32_t t = kNoPrimitive, m = 0, p = 0;
@@ -75,7 +79,10 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     } tri;
     ResolveRun8 run;  // the SIMD path's copy of the cached triangle's terms
     uint32_t run_t = kNoPrimitive;
-    for (size_t y = y0; y < y1; ++y)
+    // The chunk is one block row: its bounds are accumulated row by row below.
+    BlockRowBounds bounds;
+    bounds.reset(g.blocks_x());
+    for (size_t y = y0; y < y1; ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = y * size_t(w) + size_t(x);
         const uint32_t t = vis.ids[i];
@@ -186,6 +193,11 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
         g.prim_id[i] = p;
         g.covered[i] = 1;
       }
+      // The row's positions, back from L1 once the row is written (reading them right after
+      // the SIMD path's vector stores would stall on store forwarding).
+      bounds.add_row(&g.position[y * size_t(w)], &g.covered[y * size_t(w)], w);
+    }
+    bounds.store(g, int(y0) / kGBufferBlock);
   });
 }
 

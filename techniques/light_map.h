@@ -14,6 +14,7 @@
 #include "core/gbuffer.h"
 #include "core/scene.h"
 #include "techniques/face_render.h"
+#include "techniques/faces_needed.h"
 #include "techniques/map_params.h"
 #include "techniques/moment_filter.h"
 #include "techniques/technique.h"
@@ -35,11 +36,6 @@ struct LightMap {
 
 // The layout of a technique's params (the projector's needs scene.projector).
 FaceLayout map_layout(const MapParams& p, const Scene& scene);
-// Faces the lookups of the covered, light-facing pixels touch. Without `looked_up` it first
-// walks a sparse sample of the pixels and stops there when that already needs every face; with
-// it, every pixel is walked and `looked_up` receives the number of such pixels.
-std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
-                               const MapParams& p, size_t* looked_up = nullptr);
 // Renders the needed faces and stores them (quantized).
 void render_light_map(const Scene& scene, const MapParams& p, const std::vector<bool>& needed,
                       LightMap& map);

@@ -1,0 +1,38 @@
+#pragma once
+// Stage 2 of the light-map pipeline (techniques/light_map.h): which faces some pixel's lookup
+// touches, so that only those are rendered. The answer is the exact set of faces of the
+// covered, light-facing pixels' lookups (and, for cross-face PCF, of their taps); every path
+// below gives that same set (README "The light-map pipeline").
+#include <vector>
+
+#include "core/gbuffer.h"
+#include "core/scene.h"
+#include "techniques/light_faces.h"
+#include "techniques/map_params.h"
+
+namespace shadowlab {
+
+// Faces the lookups of the covered, light-facing pixels touch. Without `looked_up` it first
+// walks a sparse sample of the pixels and stops there when that already needs every face; then,
+// when the GBuffer has block bounds, it decides whole 16×16 blocks from them (box_single_face)
+// and walks only the pixels of the blocks it cannot decide. With `looked_up`, every pixel is
+// walked and `looked_up` receives the number of such pixels.
+std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
+                               const MapParams& p, size_t* looked_up = nullptr);
+
+// The face f such that every point within `reach` metres of the box [lo, hi] (world space) has
+// face_of(point − light) == f and, when cross_pcf > 1, its whole cross_pcf × cross_pcf PCF
+// footprint inside f's image (pcf_taps_inside), with a margin that covers float rounding (a
+// relative 1e-5 of the coordinates' magnitude, and one texel for the footprint); −1 when the box
+// cannot be decided so (it straddles a face boundary or the light, is not finite, or the layout
+// is the projector's, whose single face needs no decision).
+//
+// Why a box can be decided from its corners alone: each face owns a convex cone of directions,
+// an intersection of half-spaces a·d >= 0 through the light (cube: forward ± right and forward ±
+// up; tetrahedron: n_f − n_j; dual paraboloid: ±forward), and the footprint-inside condition on
+// a gnomonic face is four more such half-spaces. The minimum of a·d over a box is
+// a·centre − Σ|a_i|·half_i, so one test per half-space decides every point of the box.
+int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo, const vec3& hi,
+                    float reach, int cross_pcf);
+
+}  // namespace shadowlab

@@ -1,0 +1,170 @@
+// Stage 2 of the light-map pipeline (techniques/faces_needed.h): the block bounds the camera
+// pass leaves, the box test that decides a whole block, and the faces-needed set with blocks
+// against a brute-force walk of every pixel and every tap.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "techniques/faces_needed.h"
+#include "techniques/light_map.h"
+#include "techniques/map_receiver.h"
+#include "test_scenes.h"
+
+namespace shadowlab {
+namespace {
+
+// The camera pass leaves, per 16×16 block, the min and max of its covered positions; the
+// image height 120 is not a multiple of 16, so the last block row is partial.
+TEST(FacesNeeded, BlockBoundsAreTheCoveredPositionsBounds) {
+  const Scene scene = test::small_scene("default", 152, 120);
+  const GBuffer g = render_gbuffer(scene);
+  ASSERT_TRUE(g.has_block_bounds());
+  ASSERT_EQ(g.block_bounds.size(), size_t(10 * 8));
+  int empty = 0;
+  for (int by = 0; by < g.blocks_y(); ++by)
+    for (int bx = 0; bx < g.blocks_x(); ++bx) {
+      vec3 lo(1e30f), hi(-1e30f);
+      bool any = false;
+      for (int y = by * 16; y < std::min(g.height, by * 16 + 16); ++y)
+        for (int x = bx * 16; x < std::min(g.width, bx * 16 + 16); ++x) {
+          const size_t i = size_t(y) * size_t(g.width) + size_t(x);
+          if (!g.covered[i]) continue;
+          any = true;
+          for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], g.position[i][k]);
+            hi[k] = std::max(hi[k], g.position[i][k]);
+          }
+        }
+      const BlockBounds& b = g.block_bounds[size_t(by * g.blocks_x() + bx)];
+      ASSERT_EQ(b.empty(), !any) << bx << "," << by;
+      empty += !any;
+      if (any) {
+        EXPECT_EQ(b.lo, lo) << bx << "," << by;
+        EXPECT_EQ(b.hi, hi) << bx << "," << by;
+      }
+    }
+  GBuffer copy = g;
+  copy.resize(8, 8);
+  EXPECT_FALSE(copy.has_block_bounds());  // a rewritten GBuffer gets no stale bounds
+}
+
+// Every point of a decided box (grown by `reach`) maps to the decided face, with its whole PCF
+// footprint inside that face's image for cross-face PCF; random lights and boxes, from points to
+// boxes a metre wide, on every layout. Both answers must occur, so the test is not vacuous.
+TEST(FacesNeeded, EveryPointOfADecidedBoxMapsToItsFace) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  auto in = [&](float a, float b) { return a + (b - a) * u01(rng); };
+  const struct { FaceLayout layout; int cross_pcf; } layouts[] = {
+      {cube_layout(64, 0), 1}, {cube_layout(64, 0), 3}, {cube_layout(16, 0), 5},
+      {tetra_layout(64, 3), 1}, {dual_paraboloid_layout(64, 2), 1}};
+  for (const auto& c : layouts) {
+    int decided = 0, undecided = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      const vec3 light(in(-3, 3), in(-3, 3), in(-3, 3));
+      const vec3 centre = light + glm::normalize(vec3(in(-1, 1), in(-1, 1), in(-1, 1))) * in(0.05f, 6);
+      const vec3 half = vec3(in(0, 1), in(0, 1), in(0, 1)) * std::pow(10.0f, in(-4, 0));
+      const float reach = u01(rng) < 0.5f ? 0.0f : in(0, 0.05f);
+      const int f = box_single_face(c.layout, light, centre - half, centre + half, reach, c.cross_pcf);
+      if (f < 0) {
+        ++undecided;
+        continue;
+      }
+      ++decided;
+      const LightFace& lf = c.layout.faces[size_t(f)];
+      for (int s = 0; s < 40; ++s) {
+        vec3 q;
+        for (int k = 0; k < 3; ++k) {
+          const float e = half[k] + reach;
+          // The first 8 samples are the grown box's corners.
+          q[k] = s < 8 ? centre[k] + (((s >> k) & 1) ? e : -e) : centre[k] + in(-e, e);
+        }
+        const vec3 d = q - light;
+        ASSERT_EQ(face_of(c.layout, d), f) << "trial " << trial << " sample " << s;
+        if (c.cross_pcf > 1)
+          ASSERT_TRUE(pcf_taps_inside(face_texel_coords(lf, d), c.cross_pcf, lf.width, lf.height))
+              << "trial " << trial << " sample " << s;
+      }
+    }
+    EXPECT_GT(decided, 300);
+    EXPECT_GT(undecided, 200);
+  }
+}
+
+// A point box well inside a face is decided; a box around the light or across a face boundary
+// is not.
+TEST(FacesNeeded, BoxTestDecidesInteriorsOnly) {
+  const FaceLayout cube = cube_layout(64, 0);
+  const vec3 L(0.5f, 1.0f, -0.25f);
+  const vec3 px = L + vec3(2.0f, 0.3f, -0.2f);
+  EXPECT_EQ(box_single_face(cube, L, px, px, 0.0f, 1), 0);
+  EXPECT_EQ(box_single_face(cube, L, px, px, 0.0f, 3), 0);
+  EXPECT_EQ(box_single_face(cube, L, L - vec3(0.1f), L + vec3(0.1f), 0.0f, 1), -1);
+  const vec3 edge = L + vec3(2.0f, 2.0f, 0.0f);  // on the +x / +y boundary
+  EXPECT_EQ(box_single_face(cube, L, edge - vec3(0.01f), edge + vec3(0.01f), 0.0f, 1), -1);
+  // 0.9 of the way to the +x face's edge: decided alone, not once the normal offset's reach
+  // or a 5×5 footprint at res 16 (2.5 texels of the 8-texel half-face) crosses it.
+  const vec3 near_edge = L + vec3(2.0f, 1.8f, 0.0f);
+  EXPECT_EQ(box_single_face(cube, L, near_edge, near_edge, 0.0f, 1), 0);
+  EXPECT_EQ(box_single_face(cube, L, near_edge, near_edge, 0.3f, 1), -1);
+  EXPECT_EQ(box_single_face(cube_layout(16, 0), L, near_edge, near_edge, 0.0f, 5), -1);
+  const vec3 inf(std::numeric_limits<float>::infinity());
+  EXPECT_EQ(box_single_face(cube, L, -inf, inf, 0.0f, 1), -1);
+}
+
+// The faces needed with block bounds equal a brute-force walk of every covered, light-facing
+// pixel's lookup point and (cross-face PCF) every tap, for lights moved around the scene, every
+// layout, PCF sizes and normal offsets. Enough of the cases need fewer than every face, so the
+// block path (not only the sparse sample's early exit) decides them.
+TEST(FacesNeeded, BlockPathEqualsABruteForceWalk) {
+  const FaceLayoutKind C = FaceLayoutKind::Cube, T = FaceLayoutKind::Tetrahedron,
+                       D = FaceLayoutKind::DualParaboloid;
+  const struct { const char* spec; FaceLayoutKind layout; MapFilter filter; } specs[] = {
+      {"csm:res=256", C, MapFilter::Depth},        {"csm:res=256,pcf=3", C, MapFilter::Depth},
+      {"csm:res=32,pcf=5", C, MapFilter::Depth},   {"csm:res=64,normal=2", C, MapFilter::Depth},
+      {"tsm:res=256", T, MapFilter::Depth},        {"tsm:res=64,pcf=3", T, MapFilter::Depth},
+      {"dsm:res=256", D, MapFilter::Depth},        {"cvsm:res=128", C, MapFilter::Variance},
+      // Offsets of metres: lookup points cross face boundaries their receivers do not.
+      {"csm:res=64,normal=6", C, MapFilter::Depth}, {"csm:res=128,normal=12", C, MapFilter::Depth},
+      {"csm:res=32,normal=5", C, MapFilter::Depth}, {"tsm:res=64,normal=6", T, MapFilter::Depth}};
+  const vec3 offsets[] = {vec3(0.0f), vec3(0.0f, -1.2f, 0.0f), vec3(1.5f, -1.0f, 0.5f),
+                          vec3(-2.0f, 0.5f, -1.0f), vec3(0.3f, -1.7f, -0.4f)};
+  int partial = 0, cases = 0;
+  for (const char* scene_name : {"default", "foliage"}) {
+    Scene scene = test::small_scene(scene_name, 160, 120);
+    const vec3 light0 = scene.light.position;
+    for (const vec3& off : offsets) {
+      scene.light.position = light0 + off;
+      const GBuffer g = render_gbuffer(scene);
+      ASSERT_TRUE(g.has_block_bounds());
+      for (const auto& c : specs) {
+        const char* spec = c.spec;
+        const MapParams p = parse_map_params(parse_technique_spec(spec, "--technique"), c.layout,
+                                             c.filter, "--technique");
+        const FaceLayout layout = map_layout(p, scene);
+        const bool cross = p.filter == MapFilter::Depth && p.seams == SeamMode::Cross && p.pcf > 1;
+        std::vector<bool> expected(layout.faces.size(), false);
+        for (size_t i = 0; i < g.pixel_count(); ++i) {
+          if (!g.covered[i] || !faces_light(g, i, scene.light.position)) continue;
+          const vec3 to_p = lookup_point(layout, scene.light, p, g.position[i], g.geo_normal[i]) -
+                            scene.light.position;
+          const int face = face_of(layout, to_p);
+          expected[size_t(face)] = true;
+          if (cross)
+            for_each_pcf_tap(layout, face, face_texel_coords(layout.faces[size_t(face)], to_p), p.pcf,
+                             [&](int ff, int, int, float) { expected[size_t(ff)] = true; });
+        }
+        ++cases;
+        partial += std::count(expected.begin(), expected.end(), true) < long(expected.size());
+        EXPECT_EQ(faces_needed(scene, g, layout, p), expected)
+            << scene_name << " " << spec << " light offset " << off.x << "," << off.y << "," << off.z;
+      }
+    }
+  }
+  EXPECT_GE(partial, cases / 4) << partial << " of " << cases;
+}
+
+}  // namespace
+}  // namespace shadowlab
