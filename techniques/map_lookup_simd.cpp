@@ -430,6 +430,70 @@ SL_AVX2 void bilinear8_avx2(const MapLookupConsts& c, const Receivers8& r,
   }
 }
 
+// bilinear8_avx2 with plain loads instead of gathers: each lane's two taps of a row, (x0, y)
+// and (x0 + 1, y), are adjacent floats, so one 8-byte load fetches both (half the element
+// loads of the gathers, and no gather microcode, which costs most of the filters' lookups on
+// the AMD parts we measure on: README "Technique benchmark"). The pair starts at
+// clamp(ix, 0, w − 2), inside the row; a lane clamped at the left edge takes the pair's first
+// value for both taps, one at the right edge its second, so the taps are bilinear_taps' clamped
+// texels as before, bit for bit. Inactive lanes load texel 0 of face 0's plane and are zeroed,
+// as the masked gathers leave them. Needs every face at least 2 texels wide (the dispatcher
+// below checks).
+SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
+                                  const PlaneGather* planes, int n, float (*values)[4][8],
+                                  float* fx, float* fy) {
+  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
+  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const int active_bits = _mm256_movemask_ps(active);
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
+  if (_mm256_movemask_ps(_mm256_and_ps(active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
+      active_bits == 0) {
+    // A face 1 texel wide (no pair fits), or nothing to load: the gathers.
+    bilinear8_avx2(c, r, planes, n, values, fx, fy);
+    return;
+  }
+  const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
+  const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
+  const __m256i ix = floor_i(gx), iy = floor_i(gy);
+  _mm256_storeu_ps(fx, _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix)));
+  _mm256_storeu_ps(fy, _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy)));
+  const __m256i wm2 = _mm256_sub_epi32(wm, one);
+  const __m256i start = clamp_i(ix, zero, wm2);
+  // Lanes clamped at the left edge (both taps = texel 0) and at the right edge (both = w − 1).
+  const __m256 left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
+  const __m256 right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
+  const __m256i row[2] = {
+      _mm256_add_epi32(_mm256_mullo_epi32(clamp_i(iy, zero, hm), w), start),
+      _mm256_add_epi32(_mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w), start)};
+  const __m256i order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+  const int first_active = __builtin_ctz(unsigned(active_bits));
+  for (int p = 0; p < n; ++p) {
+    const __m256i off = lane_i(planes[p].offset, face);
+    for (int y = 0; y < 2; ++y) {
+      alignas(32) int32_t at[8];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(at), _mm256_add_epi32(off, row[y]));
+      // Inactive lanes (their face may not even be rendered) load an active lane's pair.
+      for (int k = 0; k < 8; ++k)
+        if (!((active_bits >> k) & 1)) at[k] = at[first_active];
+      auto pair = [&](int k) { return reinterpret_cast<const double*>(planes[p].base + at[k]); };
+      const __m128d q0 = _mm_loadh_pd(_mm_load_sd(pair(0)), pair(1));
+      const __m128d q1 = _mm_loadh_pd(_mm_load_sd(pair(2)), pair(3));
+      const __m128d q2 = _mm_loadh_pd(_mm_load_sd(pair(4)), pair(5));
+      const __m128d q3 = _mm_loadh_pd(_mm_load_sd(pair(6)), pair(7));
+      // A = (a0 b0 a1 b1 | a2 b2 a3 b3), B likewise for lanes 4–7 (a: first tap, b: second).
+      const __m256 A = _mm256_castpd_ps(_mm256_set_m128d(q1, q0));
+      const __m256 B = _mm256_castpd_ps(_mm256_set_m128d(q3, q2));
+      const __m256 first = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(A, B, 0x88), order);
+      const __m256 second = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(A, B, 0xDD), order);
+      _mm256_storeu_ps(values[p][2 * y], _mm256_and_ps(_mm256_blendv_ps(first, second, right), active));
+      _mm256_storeu_ps(values[p][2 * y + 1],
+                       _mm256_and_ps(_mm256_blendv_ps(second, first, left), active));
+    }
+  }
+}
+
 }  // namespace
 #endif
 
@@ -456,7 +520,7 @@ Faces8Fn faces8_simd() {
 
 Bilinear8Fn bilinear8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx2_paths()) return bilinear8_avx2;
+  if (use_avx2_paths()) return bilinear8_pairs_avx2;
 #endif
   return nullptr;
 }

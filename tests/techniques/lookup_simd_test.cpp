@@ -9,6 +9,7 @@
 
 #include "core/cpu_features.h"
 #include "techniques/light_map.h"
+#include "techniques/map_lookup_simd.h"
 #include "techniques/map_receiver.h"
 
 namespace shadowlab {
@@ -206,6 +207,76 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
     EXPECT_GT(partial, c.g.pixel_count() / 100) << what;
     EXPECT_GT(lit, c.g.pixel_count() / 100) << what;
   }
+}
+
+}  // namespace
+}  // namespace shadowlab
+
+namespace shadowlab {
+namespace {
+
+// The bilinear tap loads (bilinear8_simd: adjacent taps loaded as pairs) against
+// bilinear_taps + bilinear_indices, on faces 1, 2 and 9 texels wide, with lanes clamped at
+// every edge, inactive lanes, and two planes whose texel values are all distinct.
+TEST(LookupSimd, BilinearTapsMatchTheScalarTapsAtEveryEdge) {
+  const Bilinear8Fn bilinear8 = bilinear8_simd();
+  if (!bilinear8) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
+  const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
+  MapLookupConsts c;
+  std::vector<std::vector<float>> planes(2);
+  for (int p = 0; p < 2; ++p)
+    for (int f = 0; f < 3; ++f)
+      for (int i = 0; i < widths[f] * heights[f]; ++i)
+        planes[p].push_back(float(1000 * p + 100 * f + i));
+  PlaneGather g[2];
+  for (int p = 0; p < 2; ++p) {
+    g[p].base = planes[p].data();
+    int off = 0;
+    for (int f = 0; f < 3; ++f) {
+      g[p].offset[f] = off;
+      off += widths[f] * heights[f];
+    }
+    g[p].ok = true;
+  }
+  for (int f = 0; f < 3; ++f) {
+    c.width[f] = widths[f];
+    c.height[f] = heights[f];
+  }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-2.0f, 12.0f);
+  const float edges[] = {-3.0f, -0.5f, 0.0f, 0.49f, 0.5f, 0.51f, 1.0f, 1.5f, 2.5f, 8.5f, 9.0f, 9.5f, 20.0f};
+  int checked = 0, clamped_left = 0, clamped_right = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Receivers8 r{};
+    for (int k = 0; k < 8; ++k) {
+      // Faces 1 and 2 only in some batches, so the pair path runs on batches without them.
+      r.face[k] = trial % 4 == 0 ? int32_t(rng() % 3) : 2;
+      r.sx[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+      r.sy[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+      r.active[k] = rng() % 5 ? -1 : 0;
+    }
+    alignas(32) float values[2][4][8], fx[8], fy[8];
+    bilinear8(c, r, g, 2, values, fx, fy);
+    for (int k = 0; k < 8; ++k) {
+      if (!r.active[k]) continue;
+      const int f = r.face[k];
+      const Bilinear b = bilinear_taps(vec2(r.sx[k], r.sy[k]), widths[f], heights[f]);
+      size_t idx[4];
+      bilinear_indices(b, widths[f], idx);
+      ASSERT_EQ(fx[k], b.fx);
+      ASSERT_EQ(fy[k], b.fy);
+      for (int p = 0; p < 2; ++p)
+        for (int t = 0; t < 4; ++t)
+          ASSERT_EQ(values[p][t][k], planes[p][size_t(g[p].offset[f]) + idx[t]])
+              << "trial " << trial << " lane " << k << " plane " << p << " tap " << t;
+      ++checked;
+      clamped_left += floor_int(r.sx[k] - 0.5f) < 0;
+      clamped_right += floor_int(r.sx[k] - 0.5f) >= widths[f] - 1;
+    }
+  }
+  EXPECT_GT(checked, 20000);
+  EXPECT_GT(clamped_left, 1000);
+  EXPECT_GT(clamped_right, 1000);
 }
 
 }  // namespace
