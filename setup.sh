@@ -7,7 +7,7 @@ cd "$(dirname "$0")"
 
 packages=(cmake g++ make pkg-config libembree-dev libtbb-dev libglm-dev libopenexr-dev
           libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev
-          libcli11-dev libfmt-dev)
+          libcli11-dev libfmt-dev libtinygltf-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

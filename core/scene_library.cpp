@@ -292,23 +292,21 @@ Scene make_builtin_scene(const std::string& name) {
   return s;
 }
 
-Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* notes) {
-  Scene s = load_obj_scene(obj_path, notes);
-  const ObjViewHeader header = read_obj_view_header(obj_path);
+void frame_from_bounds(Scene& s, bool camera, bool light, const std::string& where) {
   const Bounds b = scene_bounds(s);
   const vec3 c = b.centre();
   float r = 0.5f * glm::length(b.extent());
   if (!(r > 0.0f)) r = 1.0f;  // a single point: any scale will do
   // The automatic framing puts the camera and light a few radii away: with coordinates near
   // float's limit that overflows (then the light, which the user never set, would be named).
-  const bool frames = header.camera.has_value() && header.light.has_value();
-  if (!frames && !(std::isfinite(r) && is_finite(c) && r < 1e30f && glm::length(c) < 1e30f)) {
+  if ((camera || light) &&
+      !(std::isfinite(r) && is_finite(c) && r < 1e30f && glm::length(c) < 1e30f)) {
     double largest = 0.0;
     for (int k = 0; k < 3; ++k)
       largest = std::max({largest, std::fabs(double(b.lo[k])), std::fabs(double(b.hi[k]))});
-    throw InputError(obj_path, "the model's bounds are too large to frame a camera and a light "
-                               "automatically (coordinates up to " + number_text(largest) +
-                                   " m); scale the model or give them in the file's header");
+    throw InputError(where, "the model's bounds are too large to frame a camera and a light "
+                            "automatically (coordinates up to " + number_text(largest) +
+                                " m); scale the model or give them in the file");
   }
   // Every triangle of zero area: nothing casts or receives a shadow.
   bool any_area = false;
@@ -319,11 +317,8 @@ Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* note
       any_area = glm::length(glm::cross(b2 - a, c2 - a)) > 0.0f;
     }
   if (!any_area)
-    throw InputError(obj_path, "every triangle has zero area: nothing to render or shadow");
-
-  if (header.camera) {
-    s.camera = *header.camera;
-  } else {
+    throw InputError(where, "every triangle has zero area: nothing to render or shadow");
+  if (camera) {
     const float d = 1.05f * r / std::sin(glm::radians(30.0f));
     s.camera.eye = c + d * glm::normalize(vec3(0.0f, 1.0f, 1.0f));
     s.camera.target = c;
@@ -332,14 +327,20 @@ Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* note
     s.camera.near = std::max(0.5f * (d - r), 1e-3f * d);
     s.camera.far = 1.5f * (d + r);
   }
-  if (header.light) {
-    s.light = *header.light;
-  } else {
+  if (light) {
     s.light.position = c + 1.5f * r * glm::normalize(vec3(1.0f, 1.5f, 0.5f));
     s.light.radius = 0.01f * r;
     s.light.far = 1.02f * 2.5f * r;
     s.light.near = 1e-3f * s.light.far;
   }
+}
+
+Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* notes) {
+  Scene s = load_obj_scene(obj_path, notes);
+  const ObjViewHeader header = read_obj_view_header(obj_path);
+  frame_from_bounds(s, !header.camera, !header.light, obj_path);
+  if (header.camera) s.camera = *header.camera;
+  if (header.light) s.light = *header.light;
   validate_scene(s, obj_path);
   return s;
 }

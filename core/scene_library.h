@@ -43,6 +43,11 @@ Scene make_builtin_scene(const std::string& name);
 // Notes from the loader go to *notes (else stderr).
 Scene make_obj_scene(const std::string& obj_path, std::vector<std::string>* notes = nullptr);
 
+// The framing make_obj_scene gives a model without a camera (camera = true) and/or a light
+// (light = true), from the scene bounds; the others are kept. Throws InputError(where, ...) when
+// the bounds are too large to frame, or when every triangle has zero area (either way).
+void frame_from_bounds(Scene& s, bool camera, bool light, const std::string& where);
+
 // Sets the camera's image size; throws InputError("--size", ...) outside [1, kMaxImageSide].
 void apply_camera_size(Scene& scene, int width, int height);
 

@@ -17,6 +17,7 @@
 #include "core/obj_loader.h"
 #include "core/parallel.h"
 #include "core/parse_number.h"
+#include "scenes/gltf_loader.h"
 #include "core/scene_library.h"
 #include "techniques/technique.h"
 
@@ -196,7 +197,9 @@ void add_switch(CommandLine& cl, const std::string& flag, const std::string& hel
 
 void add_common_options(CommandLine& cl, CommonOptions& o) {
   o.out = "out/" + cl.program;
-  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage) or an .obj file (default: default)", o.scene);
+  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage), an .obj file, or a .gltf/.glb file (default: default)", o.scene);
+  add_int(cl, "--light", "N", "glTF scenes: which of the file's lights to use, in node order (default 0)", o.gltf_light, 0, 1 << 20);
+  add_int(cl, "--camera", "N", "glTF scenes: which of the file's cameras to use, in node order (default 0)", o.gltf_camera, 0, 1 << 20);
   add_int(cl, "--width", "W", "image width in pixels (default: the scene's camera, 1024)", o.width, 1, kMaxImageSide);
   add_int(cl, "--height", "H", "image height in pixels (default: the scene's camera, 768)", o.height, 1, kMaxImageSide);
   // Applied as it is parsed, before any work.
@@ -219,7 +222,7 @@ void add_common_options(CommandLine& cl, CommonOptions& o) {
 }
 
 std::vector<std::string> common_scene_flags() {
-  return {"--scene", "--width", "--height", "--light-radius", "--light-pos", "--eye", "--target",
+  return {"--scene", "--light", "--camera", "--width", "--height", "--light-radius", "--light-pos", "--eye", "--target",
           "--fov", "--alpha-cutoff", "--no-alpha", "--slide", "--projector-pos",
           "--projector-target", "--projector-fov", "--projector-aspect", "--max-memory", "--out"};
 }
@@ -346,7 +349,14 @@ void apply_projector_options(const CommonOptions& o, Scene& scene) {
 Scene scene_from_options(const CommonOptions& o) {
   const std::string& name = o.scene;
   const bool is_file = name.find('/') != std::string::npos || name.find('.') != std::string::npos;
-  Scene scene = is_file ? make_obj_scene(name) : make_builtin_scene(name);
+  if ((o.gltf_light || o.gltf_camera) && !is_gltf_path(name))
+    throw InputError(o.gltf_light ? "--light" : "--camera", "picks among a glTF file's lights and cameras; --scene is not a .gltf/.glb file");
+  GltfChoice choice;
+  choice.light = o.gltf_light.value_or(0);
+  choice.camera = o.gltf_camera.value_or(0);
+  Scene scene = is_gltf_path(name) ? make_gltf_scene(name, choice)
+                : is_file          ? make_obj_scene(name)
+                                   : make_builtin_scene(name);
   Camera& cam = scene.camera;
   cam.width = o.width.value_or(cam.width);
   cam.height = o.height.value_or(cam.height);
