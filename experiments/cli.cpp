@@ -18,6 +18,7 @@
 #include "core/parallel.h"
 #include "core/parse_number.h"
 #include "scenes/gltf_loader.h"
+#include "scenes/scene_file.h"
 #include "core/scene_library.h"
 #include "techniques/technique.h"
 
@@ -197,7 +198,8 @@ void add_switch(CommandLine& cl, const std::string& flag, const std::string& hel
 
 void add_common_options(CommandLine& cl, CommonOptions& o) {
   o.out = "out/" + cl.program;
-  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage), an .obj file, or a .gltf/.glb file (default: default)", o.scene);
+  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage), an .obj file, a .gltf/.glb file, or a .json scene file (default: default)", o.scene);
+  add_switch(cl, "--ground", "add a ground quad under the scene (for a lone model: 2 x the bounds diagonal, at the bounds' bottom)", o.ground);
   add_int(cl, "--light", "N", "glTF scenes: which of the file's lights to use, in node order (default 0)", o.gltf_light, 0, 1 << 20);
   add_int(cl, "--camera", "N", "glTF scenes: which of the file's cameras to use, in node order (default 0)", o.gltf_camera, 0, 1 << 20);
   add_int(cl, "--width", "W", "image width in pixels (default: the scene's camera, 1024)", o.width, 1, kMaxImageSide);
@@ -222,7 +224,7 @@ void add_common_options(CommandLine& cl, CommonOptions& o) {
 }
 
 std::vector<std::string> common_scene_flags() {
-  return {"--scene", "--light", "--camera", "--width", "--height", "--light-radius", "--light-pos", "--eye", "--target",
+  return {"--scene", "--light", "--camera", "--ground", "--width", "--height", "--light-radius", "--light-pos", "--eye", "--target",
           "--fov", "--alpha-cutoff", "--no-alpha", "--slide", "--projector-pos",
           "--projector-target", "--projector-fov", "--projector-aspect", "--max-memory", "--out"};
 }
@@ -354,9 +356,11 @@ Scene scene_from_options(const CommonOptions& o) {
   GltfChoice choice;
   choice.light = o.gltf_light.value_or(0);
   choice.camera = o.gltf_camera.value_or(0);
-  Scene scene = is_gltf_path(name) ? make_gltf_scene(name, choice)
-                : is_file          ? make_obj_scene(name)
-                                   : make_builtin_scene(name);
+  Scene scene = is_gltf_path(name)         ? make_gltf_scene(name, choice)
+                : is_scene_file_path(name) ? load_scene_file(name)
+                : is_file                  ? make_obj_scene(name)
+                                           : make_builtin_scene(name);
+  if (o.ground) add_ground_plane(scene);
   Camera& cam = scene.camera;
   cam.width = o.width.value_or(cam.width);
   cam.height = o.height.value_or(cam.height);

@@ -63,6 +63,7 @@ struct CommonOptions {
   std::string scene = "default";
   std::optional<int> width, height;  // (--threads is applied as it is parsed)
   std::optional<int> gltf_light, gltf_camera;  // --light, --camera (glTF scenes)
+  bool ground = false;                         // --ground
   std::optional<double> light_radius, fov, alpha_cutoff;
   std::optional<vec3> light_pos, eye, target;
   bool no_alpha = false;

@@ -2,13 +2,13 @@
 # Builds the libFuzzer targets with clang (build-fuzz/) and runs each for SECONDS, one after the
 # other, on a working copy of its checked-in seed corpus (fuzz/corpus/<name>/). A crash, a hang
 # (> 10 s on one input) or an allocation over 2 GB stops the run with a non-zero exit and leaves
-# the input in build-fuzz/. Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf]
+# the input in build-fuzz/. Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-30}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file)
 cxx=$(command -v clang++-14 || command -v clang++)
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$cxx" \
       -DSHADOWLAB_FUZZ=ON >/dev/null

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include <glm/gtc/quaternion.hpp>
+#include <fmt/format.h>
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
@@ -462,7 +463,7 @@ class Loader {
       } else {
         far_from_bounds_ = true;
       }
-      contents->light_text = name + " (point, radius " + number_text(s.light.radius) + " m)";
+      contents->light_text = name + " (point, radius " + fmt::format("{}", s.light.radius) + " m)";
     } else if (l.type == "spot") {
       Projector p;
       p.posed = true;

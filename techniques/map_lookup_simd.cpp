@@ -477,14 +477,18 @@ SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
       // Inactive lanes (their face may not even be rendered) load an active lane's pair.
       for (int k = 0; k < 8; ++k)
         if (!((active_bits >> k) & 1)) at[k] = at[first_active];
-      auto pair = [&](int k) { return reinterpret_cast<const double*>(planes[p].base + at[k]); };
-      const __m128d q0 = _mm_loadh_pd(_mm_load_sd(pair(0)), pair(1));
-      const __m128d q1 = _mm_loadh_pd(_mm_load_sd(pair(2)), pair(3));
-      const __m128d q2 = _mm_loadh_pd(_mm_load_sd(pair(4)), pair(5));
-      const __m128d q3 = _mm_loadh_pd(_mm_load_sd(pair(6)), pair(7));
+      // movq loads (the pair is only 4-byte aligned: _mm_loadl_epi64 reads through an
+      // unaligned type, a double load would not be allowed to).
+      auto pair = [&](int k) {
+        return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(planes[p].base + at[k]));
+      };
+      const __m128i q0 = _mm_unpacklo_epi64(pair(0), pair(1));
+      const __m128i q1 = _mm_unpacklo_epi64(pair(2), pair(3));
+      const __m128i q2 = _mm_unpacklo_epi64(pair(4), pair(5));
+      const __m128i q3 = _mm_unpacklo_epi64(pair(6), pair(7));
       // A = (a0 b0 a1 b1 | a2 b2 a3 b3), B likewise for lanes 4–7 (a: first tap, b: second).
-      const __m256 A = _mm256_castpd_ps(_mm256_set_m128d(q1, q0));
-      const __m256 B = _mm256_castpd_ps(_mm256_set_m128d(q3, q2));
+      const __m256 A = _mm256_castsi256_ps(_mm256_set_m128i(q1, q0));
+      const __m256 B = _mm256_castsi256_ps(_mm256_set_m128i(q3, q2));
       const __m256 first = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(A, B, 0x88), order);
       const __m256 second = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(A, B, 0xDD), order);
       _mm256_storeu_ps(values[p][2 * y], _mm256_and_ps(_mm256_blendv_ps(first, second, right), active));
