@@ -57,7 +57,7 @@ struct Scene {
   std::vector<ImageF> textures;   // RGBA, linear colour, alpha as stored
   PointLight light;
   // When projector.enabled, the light is a slide projector: `light` then sits at the
-  // projector's position with radius 0 (set_projector in core/scene_library.h), so visibility
+  // projector's position with radius 0 (set_projector in scenes/scene_library.h), so visibility
   // from it is what every technique and the reference compute, and a point outside the
   // projector's frustum receives no light (mask 0, technique.h).
   Projector projector;

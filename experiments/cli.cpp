@@ -14,12 +14,12 @@
 #include <limits>
 
 #include "core/error.h"
-#include "core/obj_loader.h"
+#include "scenes/obj_loader.h"
 #include "core/parallel.h"
 #include "core/parse_number.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/scene_file.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "techniques/technique.h"
 
 namespace shadowlab {
@@ -198,7 +198,9 @@ void add_switch(CommandLine& cl, const std::string& flag, const std::string& hel
 
 void add_common_options(CommandLine& cl, CommonOptions& o) {
   o.out = "out/" + cl.program;
-  add_text(cl, "--scene", "S", "built-in scene name (default, plane, room100k, room1m, bunny, foliage), an .obj file, a .gltf/.glb file, or a .json scene file (default: default)", o.scene);
+  std::string names;
+  for (const std::string& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+  add_text(cl, "--scene", "S", "built-in scene name (" + names + "), an .obj file, a .gltf/.glb file, or a .json scene file (default: default)", o.scene);
   add_switch(cl, "--ground", "add a ground quad under the scene (for a lone model: 2 x the bounds diagonal, at the bounds' bottom)", o.ground);
   add_int(cl, "--light", "N", "glTF scenes: which of the file's lights to use, in node order (default 0)", o.gltf_light, 0, 1 << 20);
   add_int(cl, "--camera", "N", "glTF scenes: which of the file's cameras to use, in node order (default 0)", o.gltf_camera, 0, 1 << 20);

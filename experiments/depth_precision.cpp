@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "experiments/cli.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"

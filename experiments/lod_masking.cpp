@@ -7,12 +7,12 @@
 
 #include <fmt/format.h>
 
-#include "core/bunny_scene.h"
+#include "scenes/bunny_scene.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "core/mesh_lod.h"
+#include "scenes/mesh_lod.h"
 #include "core/output_file.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "core/texture.h"
 #include "core/timer.h"
 #include "experiments/contact_sheet.h"

@@ -45,7 +45,7 @@ struct MaskingResult {
   std::vector<MaskingLevel> levels;
 };
 
-// `scene` must be the "bunny" built-in scene (core/bunny_scene.h) with its posed projector;
+// `scene` must be the "bunny" built-in scene (scenes/bunny_scene.h) with its posed projector;
 // throws InputError for a bad slide or technique spec (flags "--slides", "--technique").
 MaskingResult run_lod_masking(const Scene& scene, const MaskingConfig& config);
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/obj_loader.h"
+#include "scenes/obj_loader.h"
 
 namespace {
 

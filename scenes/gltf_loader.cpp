@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "core/parse_number.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "core/slide.h"
 #include "core/texture.h"
 

@@ -68,7 +68,7 @@ Scene load_gltf_scene(const std::string& path, const GltfChoice& choice, GltfCon
                       std::vector<std::string>* notes = nullptr);
 
 // load_gltf_scene, then the camera and/or light framed from the bounds when the file has none
-// (core/scene_library.h frame_from_bounds), with a note saying so and which light and camera
+// (scenes/scene_library.h frame_from_bounds), with a note saying so and which light and camera
 // were used; validates the scene.
 Scene make_gltf_scene(const std::string& path, const GltfChoice& choice,
                       std::vector<std::string>* notes = nullptr);

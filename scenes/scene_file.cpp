@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/mesh_builders.h"
-#include "core/obj_loader.h"
-#include "core/scene_library.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/obj_loader.h"
+#include "scenes/scene_library.h"
 #include "core/slide.h"
 #include "scenes/gltf_loader.h"
 

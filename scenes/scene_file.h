@@ -24,7 +24,7 @@
 //
 // A camera or light given only in part keeps the base's (or the framed) values for the rest.
 // Without a base, a camera or light the file does not give is framed from the bounds as for
-// an OBJ (core/scene_library.h frame_from_bounds), with a note. Models bring geometry and
+// an OBJ (scenes/scene_library.h frame_from_bounds), with a note. Models bring geometry and
 // materials only: a glTF model's own lights and cameras are not used here (give them in the
 // file). The light's far distance grows to reach every corner of the scene bounds when the
 // file does not set it.

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "test_paths.h"
 
 namespace shadowlab {

@@ -1,7 +1,7 @@
 // The sweep's scores behave as the paper's do: they rise with shadow-map resolution.
 #include <gtest/gtest.h>
 
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/sweep.h"
 

@@ -3,7 +3,7 @@
 
 #include <cstring>
 
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "test_paths.h"
 #include "raster/gbuffer_pass.h"
 #include "raster/gbuffer_resolve_simd.h"

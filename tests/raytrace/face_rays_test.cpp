@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "core/parallel.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "raytrace/embree_scene.h"
 
 namespace shadowlab {

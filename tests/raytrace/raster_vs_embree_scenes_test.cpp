@@ -20,7 +20,7 @@
 #include <memory>
 #include <string>
 
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
 #include "raster/pipeline.h"
 #include "raytrace/embree_scene.h"

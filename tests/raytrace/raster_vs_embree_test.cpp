@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"

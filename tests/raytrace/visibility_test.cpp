@@ -11,24 +11,17 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "raytrace/embree_scene.h"
+#include "scenes/mesh_builders.h"
 
 namespace shadowlab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Appends the quad a, b, c, d (counter-clockwise seen from its front) as one mesh.
+// The quad a, b, c, d (counter-clockwise from its front) as one mesh (scenes/mesh_builders.h).
 int add_quad(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material = 0,
              std::vector<vec2> uvs = {}) {
-  Mesh m;
-  m.name = "quad" + std::to_string(scene.meshes.size());
-  m.positions = {a, b, c, d};
-  m.indices = {0, 1, 2, 0, 2, 3};
-  m.uvs = std::move(uvs);
-  m.material = material;
-  compute_vertex_normals(m);
-  scene.meshes.push_back(std::move(m));
-  return int(scene.meshes.size()) - 1;
+  return add_quad_mesh(scene, a, b, c, d, material, std::move(uvs));
 }
 
 // Horizontal quad at height y over [x0, x1] × [z0, z1], front face up.

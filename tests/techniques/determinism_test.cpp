@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "core/parallel.h"
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 

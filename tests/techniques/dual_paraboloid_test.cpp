@@ -10,7 +10,7 @@
 #include <random>
 
 #include "core/gbuffer.h"
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 #include "raster/paraboloid.h"
 #include "techniques/light_faces.h"
 #include "techniques/paraboloid_tess.h"

@@ -83,9 +83,10 @@ TEST(FacesNeeded, EveryPointOfADecidedBoxMapsToItsFace) {
         }
         const vec3 d = q - light;
         ASSERT_EQ(face_of(c.layout, d), f) << "trial " << trial << " sample " << s;
-        if (c.cross_pcf > 1)
+        if (c.cross_pcf > 1) {
           ASSERT_TRUE(pcf_taps_inside(face_texel_coords(lf, d), c.cross_pcf, lf.width, lf.height))
               << "trial " << trial << " sample " << s;
+        }
       }
     }
     EXPECT_GT(decided, 300);

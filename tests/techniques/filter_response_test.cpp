@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 #include "techniques/light_map.h"
 #include "techniques/map_receiver.h"
 #include "test_scenes.h"

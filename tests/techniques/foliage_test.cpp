@@ -13,8 +13,8 @@
 #include <iostream>
 
 #include "core/error.h"
-#include "core/mesh_builders.h"
-#include "core/scene_library.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"

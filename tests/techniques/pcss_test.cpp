@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "core/gbuffer.h"
-#include "core/mesh_builders.h"
-#include "core/scene_library.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/scene_library.h"
 #include "techniques/technique.h"
 #include "test_scenes.h"
 

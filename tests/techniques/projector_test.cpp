@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 #include "core/slide.h"
 #include "techniques/light_map.h"
 #include "techniques/depth_quantize.h"

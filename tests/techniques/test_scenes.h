@@ -1,6 +1,6 @@
 #pragma once
 // Small helpers shared by the technique tests.
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/technique.h"
 

@@ -1,4 +1,4 @@
-#include "core/obj_loader.h"
+#include "scenes/obj_loader.h"
 
 #include <gtest/gtest.h>
 

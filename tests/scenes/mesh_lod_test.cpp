@@ -1,4 +1,4 @@
-#include "core/mesh_lod.h"
+#include "scenes/mesh_lod.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/obj_loader.h"
+#include "scenes/obj_loader.h"
 #include "test_paths.h"
 
 namespace shadowlab {

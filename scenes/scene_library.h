@@ -1,37 +1,15 @@
 #pragma once
-// Built-in scenes and OBJ scene framing. Units: metres; world right-handed, y up.
+// OBJ scene framing and scene edits (ground, projector, image size); the built-in scenes are in
+// scenes/scene_registry.h (included here). Units: metres; world right-handed, y up.
 #include <string>
 #include <vector>
 
 #include "core/scene.h"
+#include "scenes/scene_registry.h"
 
 namespace shadowlab {
 
-// Names accepted by make_builtin_scene, in the order printed by error messages.
-std::vector<std::string> builtin_scene_names();
-
-// A built-in scene by name:
-//   "default": a Kluczek-style closed 10 × 4 × 10 m room with a box, a sphere, a thin pole, a
-//              table on four thin legs and a slanted ramp (grazing receiver) around one small
-//              sphere light (radius 0.03 m) at (0.9, 2.7, -0.4); every cube face of the light
-//              sees geometry; shadows range from contact to room-long. See the .cpp for every
-//              placement.
-//   "plane":   one 10 × 10 m floor quad (y = 0, centred on the origin), light 2 m above its
-//              centre, camera looking straight down; nothing occludes (analytic tests).
-//   "room100k": the benchmark room of ../shared/assets/bench/room100k.obj built in (no asset
-//              needed): a 60 × 60 m ground, a 20 × 8 × 20 m room, 32 spheres and 32 tori, one
-//              mesh per OBJ group in OBJ order, the OBJ's light (0, 4, 0) and camera; 99,852
-//              triangles, the OBJ's tessellation (spheres 40 × 20, tori 40 × 20).
-//   "room1m":   the same layout tessellated finer (spheres 128 × 61 = 15,360 triangles, tori
-//              128 × 62 = 15,872): 999,436 triangles. See the .cpp for the layout.
-//   "bunny":   the Stanford bunny from the shared assets on a ground quad before a wall, with a
-//              posed slide projector (core/bunny_scene.h); needs the assets folder.
-//   "foliage": the palm tree and four plants (alpha-cut leaf cards) on a ground beside a wall,
-//              one hard point light above (core/foliage_scene.h); needs the assets folder.
-// Throws InputError("--scene", "unknown built-in scene 'x' (known: default, plane, ...)").
-Scene make_builtin_scene(const std::string& name);
-
-// Loads an OBJ (see core/obj_loader.h) and gives it a camera and a light:
+// Loads an OBJ (see scenes/obj_loader.h) and gives it a camera and a light:
 // - If the OBJ's leading comments carry a light and/or camera (read_obj_view_header, e.g.
 //   bench/room100k.obj), those are used exactly.
 // - Otherwise, with c = bounds centre and r = bounding-sphere radius (half the bounds

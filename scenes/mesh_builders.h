@@ -10,6 +10,12 @@ namespace shadowlab {
 // Appends an empty mesh with its own material (albedo, opaque) to the scene and returns it.
 Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo);
 
+// Appends the quad a, b, c, d (counter-clockwise seen from its front) as one mesh named
+// "quad<index>" with the given material and per-corner uvs (or none), area-weighted normals;
+// returns its mesh index. (For tests and small hand-built scenes.)
+int add_quad_mesh(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material = 0,
+                  std::vector<vec2> uvs = {});
+
 // Planar rectangle origin + s·edge_u + t·edge_v, s, t in [0, 1], split into nu × nv quads
 // (2 triangles each). Front side and flat normal: normalize(cross(edge_u, edge_v)).
 void add_grid_quad(Mesh& mesh, vec3 origin, vec3 edge_u, vec3 edge_v, int nu, int nv);

@@ -1,4 +1,4 @@
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/mesh_builders.h"
-#include "core/scene_library.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/scene_library.h"
 #include "test_paths.h"
 
 namespace shadowlab {

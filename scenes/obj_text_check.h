@@ -2,7 +2,7 @@
 // Strict line-by-line check of OBJ and MTL text, run before tinyobjloader parses it:
 // tinyobjloader reads non-numeric tokens, "nan" and missing coordinates as 0 without a
 // warning, and skips lines it does not know, so a garbage file would load as a wrong model.
-// Internal to the OBJ loader (core/obj_loader.cpp); exposed for tests.
+// Internal to the OBJ loader (scenes/obj_loader.cpp); exposed for tests.
 #include <cstddef>
 #include <string>
 #include <string_view>

@@ -1,8 +1,8 @@
-#include "core/bunny_scene.h"
+#include "scenes/bunny_scene.h"
 
 #include "core/assets.h"
-#include "core/mesh_builders.h"
-#include "core/obj_loader.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/obj_loader.h"
 
 namespace shadowlab {
 

@@ -1,4 +1,4 @@
-#include "core/obj_text_check.h"
+#include "scenes/obj_text_check.h"
 
 #include <array>
 #include <cfloat>

@@ -1,4 +1,4 @@
-#include "core/mesh_lod.h"
+#include "scenes/mesh_lod.h"
 
 #include <meshoptimizer.h>
 

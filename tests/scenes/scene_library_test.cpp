@@ -1,4 +1,4 @@
-#include "core/scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 #include "test_paths.h"
 
 namespace shadowlab {

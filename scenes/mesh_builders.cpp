@@ -1,4 +1,4 @@
-#include "core/mesh_builders.h"
+#include "scenes/mesh_builders.h"
 
 #include <cmath>
 #include <vector>
@@ -8,6 +8,19 @@
 namespace shadowlab {
 
 // Adds an empty mesh with its own material and returns it.
+int add_quad_mesh(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material,
+                  std::vector<vec2> uvs) {
+  Mesh m;
+  m.name = "quad" + std::to_string(scene.meshes.size());
+  m.positions = {a, b, c, d};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.uvs = std::move(uvs);
+  m.material = material;
+  compute_vertex_normals(m);
+  scene.meshes.push_back(std::move(m));
+  return int(scene.meshes.size()) - 1;
+}
+
 Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo) {
   Material mat;
   mat.name = name;

@@ -1,10 +1,10 @@
-#include "core/foliage_scene.h"
+#include "scenes/foliage_scene.h"
 
 #include <algorithm>
 
 #include "core/assets.h"
-#include "core/mesh_builders.h"
-#include "core/obj_loader.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/obj_loader.h"
 
 namespace shadowlab {
 

@@ -1,4 +1,4 @@
-#include "core/obj_loader.h"
+#include "scenes/obj_loader.h"
 
 #include <tiny_obj_loader.h>
 
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/obj_text_check.h"
+#include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
 
