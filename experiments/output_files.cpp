@@ -14,8 +14,12 @@
 namespace shadowlab {
 
 void write_result_files(const std::string& dir, const std::string& prefix, const ShadowResult& r,
-                        const std::string& technique, double camera_ms) {
+                        const std::string& technique, double camera_ms, const ImageF* shaded) {
   const std::string base = dir + "/" + prefix;
+  if (shaded) {
+    write_exr_rgb(base + "shaded.exr", *shaded);
+    write_png_rgb(base + "shaded.png", *shaded);
+  }
   write_exr_mask(base + "mask.exr", r.mask);
   write_png_grey(base + "mask.png", r.mask);
   if (!r.texels.empty()) write_exr_texels(base + "texel.exr", r.texels);

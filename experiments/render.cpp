@@ -1,5 +1,5 @@
-// render: one technique on one scene → mask.exr, mask.png, texel.exr, timing.json; with a
-// slide projector (--slide) also the shaded image shaded.exr (linear) and shaded.png (sRGB).
+// render: one technique on one scene → mask.exr, mask.png, texel.exr, timing.json and the shaded
+// image shaded.exr (linear) and shaded.png (sRGB) (techniques/scene_shading.h).
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -9,6 +9,7 @@
 #include "experiments/cli.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
+#include "techniques/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
 #include "techniques/projector_shading.h"
@@ -28,15 +29,13 @@ int main(int argc, char** argv) {
     add_text(cl, "--technique", "SPEC", "technique spec, e.g. csm:res=1024,pcf=3 or rt:spp=256 (required)", technique);
     add_repeats(cl, repeats, 1);
     add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
-    add_double(cl, "--ambient", "A", "projector scenes: ambient level of the shaded image, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
+    add_double(cl, "--ambient", "A", "ambient level of the shaded image, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
     if (!parse_command_line(cl, argc, argv)) return 0;
     if (technique.empty()) throw InputError("--technique", "is required (see --help)");
     const TechniqueSpec spec = parse_technique_spec(technique, "--technique");
     validate_technique(spec, "--technique");
     if (ambient) shading.ambient = float(*ambient);
     const Scene scene = scene_from_options(common);
-    if (ambient && !scene.projector.enabled)
-      throw InputError("--ambient", "needs --slide (only projector scenes are shaded)");
     validate_technique_for_scene(spec, scene, "--technique");
     check_run_memory(scene, {spec}, max_memory_bytes(common));
     const std::string& out = common.out;
@@ -50,8 +49,8 @@ int main(int argc, char** argv) {
     opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
     write_result_files(out, "", r, spec.text, camera_ms);
-    if (scene.projector.enabled) {
-      const ImageF shaded = shade_projector(scene, g, r.mask, shading);
+    {
+      const ImageF shaded = shade_scene(scene, g, r.mask, shading.ambient);
       write_exr_rgb(out + "/shaded.exr", shaded);
       write_png_rgb(out + "/shaded.png", shaded);
     }
@@ -66,9 +65,8 @@ int main(int argc, char** argv) {
                 (unsigned long long)w.texels_rendered, (unsigned long long)w.texels_filtered,
                 (unsigned long long)w.pixels_looked_up, w.taps_per_pixel(),
                 double(w.bytes_written) * 1e-6, double(w.bytes_read) * 1e-6);
-    std::printf("wrote %s/mask.exr, mask.png%s, timing.json%s\n", out.c_str(),
-                r.texels.empty() ? "" : ", texel.exr",
-                scene.projector.enabled ? ", shaded.exr, shaded.png" : "");
+    std::printf("wrote %s/mask.exr, mask.png%s, timing.json, shaded.exr, shaded.png\n", out.c_str(),
+                r.texels.empty() ? "" : ", texel.exr");
     return 0;
   });
 }

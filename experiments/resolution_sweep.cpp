@@ -31,7 +31,15 @@ int main(int argc, char** argv) {
     add_switch(cl, "--quick", "CI size: 320x240, 64 spp, 3 repeats (explicit flags still win)", quick);
     add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
     add_text(cl, "--plot", "FILE.svg", "also write score-vs-time plots with Pareto fronts (default: none)", plot, &plot_given);
+    std::string sheet = "mask";
+    std::optional<double> ambient;
+    add_text(cl, "--sheet", "KIND", "contact sheet of masks or shaded images: mask or shaded (default mask)", sheet);
+    add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
     if (!parse_command_line(cl, argc, argv)) return 0;
+    if (sheet != "mask" && sheet != "shaded")
+      throw InputError("--sheet", "expected mask or shaded, got '" + sheet + "'");
+    c.shaded_sheet = sheet == "shaded";
+    if (ambient) c.ambient = float(*ambient);
     if (quick) {
       if (!common.width) common.width = 320;
       if (!common.height) common.height = 240;
@@ -61,8 +69,11 @@ int main(int argc, char** argv) {
     std::printf("  reference: %s\n", r.reference.result.notes.c_str());
     write_sweep_csv(c.out_dir + "/sweep.csv", r);
     write_sweep_json(c.out_dir + "/sweep.json", r);
-    std::printf("wrote %s/sweep.csv, sweep.json and every mask (EXR + PNG)\n", c.out_dir.c_str());
-    write_png_grey(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
+    std::printf("wrote %s/sweep.csv, sweep.json and every mask and shaded image (EXR + PNG)\n", c.out_dir.c_str());
+    if (c.shaded_sheet)
+      write_png_rgb(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
+    else
+      write_png_grey(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
     if (!plot.empty())
       write_pareto_svg(plot, sweep_plot_points(r),
                        "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +

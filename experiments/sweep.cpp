@@ -17,6 +17,7 @@
 #include "experiments/contact_sheet.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
+#include "techniques/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 
 namespace shadowlab {
@@ -100,9 +101,15 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.reference.result = run_technique(ref_spec, scene, g, ref_opt);
   out.reference.report = compute_metric(out.reference.result.mask, out.reference.result.mask,
                                          nullptr, nullptr, weights, &scratch);
-  if (!config.out_dir.empty())
-    write_result_files(config.out_dir, "reference_", out.reference.result, ref_spec.text,
-                       out.camera_ms);
+  // Shaded images: written beside the masks, and kept downscaled to the contact sheet's cell.
+  const int cell_factor = contact_sheet_layout({}, {}, g.width, g.height, true).factor;
+  auto shade = [&](SweepRow& row, const std::string& prefix, const std::string& spec_text) {
+    const ImageF shaded = shade_scene(scene, g, row.result.mask, config.ambient);
+    row.shaded_cell = box_downscale(shaded, cell_factor);
+    if (!config.out_dir.empty())
+      write_result_files(config.out_dir, prefix, row.result, spec_text, out.camera_ms, &shaded);
+  };
+  shade(out.reference, "reference_", ref_spec.text);
   progress_line(config, ++done, total, "reference", start);
 
   for (const TechniqueSpec& base : specs)
@@ -124,11 +131,9 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       row.report = compute_metric(row.result.mask, out.reference.result.mask,
                                   row.result.texels.empty() ? nullptr : &row.result.texels, &t,
                                   weights, &scratch);
-      if (!config.out_dir.empty()) {
-        std::string prefix = base.text + "_" + std::to_string(res) + "_";
-        std::replace_if(prefix.begin(), prefix.end(), [](char c) { return c == ':' || c == ',' || c == '='; }, '_');
-        write_result_files(config.out_dir, prefix, row.result, spec.text, out.camera_ms);
-      }
+      std::string prefix = base.text + "_" + std::to_string(res) + "_";
+      std::replace_if(prefix.begin(), prefix.end(), [](char c) { return c == ':' || c == ',' || c == '='; }, '_');
+      shade(row, prefix, spec.text);
       out.rows.push_back(std::move(row));
       progress_line(config, ++done, total, out.rows.back().label, start);
     }
@@ -248,14 +253,23 @@ ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
   SL_CHECK_EQ(r.rows.size(), config.techniques.size() * n_res);
   std::vector<std::string> row_labels, col_labels;
   std::vector<std::vector<const ImageF*>> cells;
+  std::vector<std::vector<std::string>> captions;
+  auto cell = [&](const SweepRow& row) {
+    return config.shaded_sheet ? &row.shaded_cell : &row.result.mask;
+  };
   for (size_t t = 0; t < config.techniques.size(); ++t) {
     // The same text as the rows' labels: the canonical spec, upper case.
     row_labels.push_back(upper(parse_technique_spec(config.techniques[t], "--techniques").text));
     cells.emplace_back();
-    for (size_t j = 0; j < n_res; ++j) cells.back().push_back(&r.rows[t * n_res + j].result.mask);
+    captions.emplace_back();
+    for (size_t j = 0; j < n_res; ++j) {
+      const SweepRow& row = r.rows[t * n_res + j];
+      cells.back().push_back(cell(row));
+      captions.back().push_back(fmt::format("{:.3f}", row.report.total));
+    }
   }
   for (int res : config.resolutions) col_labels.push_back(std::to_string(res));
-  return contact_sheet(row_labels, col_labels, cells, &r.reference.result.mask);
+  return contact_sheet(row_labels, col_labels, cells, cell(r.reference), {}, &captions);
 }
 
 }  // namespace shadowlab

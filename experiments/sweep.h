@@ -22,6 +22,8 @@ struct SweepConfig {
   bool progress = false;        // progress line with ETA on stderr
   double target_fps = 30.0;     // performance score T_ref = 1/fps
   uint64_t max_memory = 0;      // refuse runs estimated above this many bytes (0: what is available)
+  float ambient = 0.1f;         // ambient level of the shaded images (techniques/scene_shading.h)
+  bool shaded_sheet = false;    // contact sheet of shaded images (--sheet shaded), else masks
 };
 
 struct SweepRow {
@@ -31,6 +33,7 @@ struct SweepRow {
   int res = 0;                  // 0 for the reference
   ShadowResult result;
   MetricReport report;
+  ImageF shaded_cell;           // the shaded image box-downscaled to the contact sheet's cell
 };
 
 struct SweepResult {
@@ -51,8 +54,9 @@ void write_sweep_json(const std::string& path, const SweepResult& result);
 // One plot point per technique row (not the reference: compared with itself and without
 // timings, its total is not on the rows' scale): series = technique, time = shadow ms.
 std::vector<PlotPoint> sweep_plot_points(const SweepResult& result);
-// The rows' masks as a contact sheet: one row per config.techniques entry, one column per
-// config.resolutions entry (both in config order), the reference mask as the first column.
+// The contact sheet: one row per config.techniques entry, one column per config.resolutions
+// entry (both in config order), the reference as the first column; cells are the masks, or the
+// shaded images with config.shaded_sheet, each with its total score under it.
 ImageF sweep_contact_sheet(const SweepResult& result, const SweepConfig& config);
 
 }  // namespace shadowlab

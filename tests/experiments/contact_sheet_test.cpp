@@ -177,15 +177,73 @@ TEST(ContactSheet, LabelsInkOnlyTheMargins) {
 }
 
 TEST(ContactSheet, BadMasksAreInputErrors) {
-  const ImageF a(40, 30, 1, 0.5f), b(41, 30, 1, 0.5f), rgb(40, 30, 3, 0.5f);
+  const ImageF a(40, 30, 1, 0.5f), b(41, 30, 1, 0.5f), two(40, 30, 2, 0.5f), rgb(40, 30, 3, 0.5f);
   EXPECT_THROW(contact_sheet({"A"}, {"1", "2"}, {{&a, &b}}, nullptr), InputError);
   EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&a}}, &b), InputError);
-  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&rgb}}, nullptr), InputError);
+  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&two}}, nullptr), InputError);  // 1 or 3 channels
+  EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{&rgb}}, &a), InputError);       // not mixed
   EXPECT_THROW(contact_sheet({"A"}, {"1"}, {{nullptr}}, nullptr), InputError);
   EXPECT_THROW(contact_sheet({}, {}, {}, nullptr), InputError);
   // Only null cells next to a reference are fine: the reference fixes the size.
   const ImageF ok = contact_sheet({"A"}, {"1"}, {{nullptr}}, &a);
   EXPECT_GT(ok.width, 2 * 40);
+}
+
+// Captions: the rows move apart by the caption strip (text height + 2); each caption's glyph
+// pixels are inked under its cell and nowhere else; a 3-channel sheet has the 1-channel sheet's
+// layout, the cells' colours, and its text in every channel.
+TEST(ContactSheet, CaptionsAndShadedCells) {
+  const ContactSheetStyle style = small_style();
+  const std::vector<std::string> rows = {"A", "B"}, cols = {"1", "2"};
+  // 60×30 masks in cells of 30×15 (factor 2): the captions fit their cells at font scale 1.
+  const ImageF m = random_mask(60, 30, 3);
+  const std::vector<std::vector<const ImageF*>> cells = {{&m, &m}, {&m, &m}};
+  const std::vector<std::vector<std::string>> captions = {{"0.5", "0.25"}, {"1", "0.125"}};
+  const ContactSheetLayout plain = contact_sheet_layout(rows, cols, 60, 30, true, style);
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 60, 30, true, style, &captions);
+  EXPECT_EQ(l.font_scale, 1);  // "0.125" is 58 px at scale 2, wider than the 30 px cells
+  EXPECT_EQ(l.caption, text_height(l.font_scale) + 2);
+  EXPECT_EQ(l.height, plain.height - (plain.top - l.top) + 2 * l.caption);
+  EXPECT_EQ(l.cell_y(1), l.top + l.cell_height + l.caption + l.separator);
+  const ImageF sheet = contact_sheet(rows, cols, cells, &m, style, &captions);
+  ASSERT_EQ(sheet.height, l.height);
+  const int s = l.font_scale;
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      // Ink pixels in the caption strip under cell (r, c): the caption's glyph pixels × s².
+      int ink = 0;
+      for (int y = l.cell_y(r) + l.cell_height; y < l.cell_y(r) + l.cell_height + l.caption; ++y)
+        for (int x = l.cell_x(1 + c); x < l.cell_x(1 + c) + l.cell_width; ++x)
+          ink += sheet.at(x, y) == style.ink;
+      EXPECT_EQ(ink, glyph_pixels(captions[size_t(r)][size_t(c)]) * s * s) << r << "," << c;
+    }
+  // The same sheet from 3-channel images whose channels are m, 1 − m and m/2.
+  ImageF rgb(60, 30, 3);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 60; ++x) {
+      rgb.at(x, y, 0) = m.at(x, y);
+      rgb.at(x, y, 1) = 1.0f - m.at(x, y);
+      rgb.at(x, y, 2) = 0.5f * m.at(x, y);
+    }
+  const std::vector<std::vector<const ImageF*>> rgb_cells = {{&rgb, &rgb}, {&rgb, &rgb}};
+  const ImageF colour = contact_sheet(rows, cols, rgb_cells, &rgb, style, &captions);
+  ASSERT_EQ(colour.channels, 3);
+  ASSERT_EQ(colour.width, sheet.width);
+  ASSERT_EQ(colour.height, sheet.height);
+  const ImageF small = box_downscale(rgb, l.factor);
+  for (int y = 0; y < l.cell_height; ++y)
+    for (int x = 0; x < l.cell_width; ++x)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(colour.at(l.cell_x(2) + x, l.cell_y(1) + y, c), small.at(x, y, c));
+  // Text: wherever the grey sheet is ink outside the cells, every channel of the colour one is.
+  for (int y = 0; y < sheet.height; ++y)
+    for (int x = 0; x < sheet.width; ++x)
+      if (x < l.left - style.separator || y < l.top - style.separator) {
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(colour.at(x, y, c), sheet.at(x, y)) << x << "," << y;
+      }
+  // Images of mixed channel counts are refused.
+  const std::vector<std::vector<const ImageF*>> mixed = {{&m, &rgb}, {&m, &m}};
+  EXPECT_THROW(contact_sheet(rows, cols, mixed, &m, style), InputError);
 }
 
 }  // namespace

@@ -72,6 +72,12 @@ TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error("resolution_sweep --resolutions 128,0 --out " + out, "--resolutions");
   expect_clear_error("resolution_sweep --spp abc --out " + out, "--spp");
   expect_clear_error("resolution_sweep --plot /no/such/folder/p.svg --out " + out, "--plot");
+  expect_clear_error("resolution_sweep --sheet colour --out " + out, "--sheet: expected mask or shaded");
+  expect_clear_error("render --technique csm --out " + out + " --scene /no/such/scene.json",
+                     "/no/such/scene.json");
+  expect_clear_error("render --technique csm --out " + out + " --scene /no/such/model.glb",
+                     "/no/such/model.glb");
+  expect_clear_error("render --technique csm --out " + out + " --camera 1", "--camera");
   expect_clear_error("metric /no/such/test.exr /no/such/ref.exr", "/no/such/test.exr");
   expect_clear_error("metric only_one.exr", "two files");
   expect_clear_error("raster_bench --cull sideways", "--cull");
@@ -300,6 +306,26 @@ TEST(Mains, ProjectorBadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error(base + " --technique csm --slide /no/such/slide.png", "/no/such/slide.png");
 }
 
+// Every render writes the shaded image; without a projector, lit floor pixels are brighter
+// than shadowed ones of the same material (the mask enters the shading).
+TEST(Mains, RenderWritesShadedImagesForPointLights) {
+  const std::string out = test::binary_path("render_shaded_out");
+  std::filesystem::remove_all(out);
+  const ProcResult r = run("render --scene default --technique csm:res=256 --width 64 --height 48 "
+                           "--repeats 1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(png_size(out + "/shaded.png"), std::make_pair(64, 48));
+  const ImageF shaded = read_exr_rgb(out + "/shaded.exr");
+  ASSERT_EQ(shaded.width, 64);
+  float lo = 1e9f, hi = -1e9f;
+  for (float v : shaded.data) {
+    ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  EXPECT_GT(hi, 4 * std::max(lo, 0.01f));
+}
+
 // A projector render writes the shaded image as linear EXR and sRGB PNG at the image size.
 TEST(Mains, RenderWithSlideWritesShadedImages) {
   const std::string out = test::binary_path("render_projector_out");
@@ -340,9 +366,11 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   for (const char* f : {"sweep.csv", "sweep.json", "reference_mask.exr", "csm_256_mask.exr"})
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
   EXPECT_NE(r.out.find("contact_sheet.png"), std::string::npos) << r.out;
-  // The contact sheet: one row (CSM), columns REF, 32, 256 of 96×72 masks (no downscale).
+  // The contact sheet: one row (CSM), columns REF, 32, 256 of 96×72 masks (no downscale), each
+  // with its total score (5 characters, "0.xyz") under it.
   const auto [w, h] = png_size(out + "/contact_sheet.png");
-  const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "256"}, 96, 72, true);
+  const std::vector<std::vector<std::string>> captions = {{"0.000", "0.000"}};
+  const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "256"}, 96, 72, true, {}, &captions);
   EXPECT_EQ(l.factor, 1);
   EXPECT_EQ(w, l.width);
   EXPECT_EQ(h, l.height);

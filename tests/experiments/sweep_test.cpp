@@ -1,9 +1,13 @@
 // The sweep's scores behave as the paper's do: they rise with shadow-map resolution.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "scenes/scene_library.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/sweep.h"
+#include "raster/gbuffer_pass.h"
+#include "techniques/scene_shading.h"
 
 namespace shadowlab {
 namespace {
@@ -46,7 +50,10 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
   // Contact sheet: 1 technique row, REF + 3 resolution columns of 256×192 masks (factor 1), so
   // each cell holds its mask unchanged, reference first.
   const ImageF sheet = sweep_contact_sheet(r, c);
-  const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "128", "512"}, 256, 192, true);
+  std::vector<std::vector<std::string>> captions(1);
+  for (const SweepRow& row : r.rows) captions[0].push_back(fmt::format("{:.3f}", row.report.total));
+  const ContactSheetLayout l =
+      contact_sheet_layout({"CSM"}, {"32", "128", "512"}, 256, 192, true, {}, &captions);
   ASSERT_EQ(l.factor, 1);
   ASSERT_EQ(sheet.width, l.width);
   ASSERT_EQ(sheet.height, l.height);
@@ -58,6 +65,19 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
         differ += sheet.at(l.cell_x(col) + x, l.cell_y(0) + y) != m.at(x, y);
     EXPECT_EQ(differ, 0) << "column " << col;
   }
+  // The shaded sheet: the same layout in RGB, each cell the row's shaded image (shade_scene of
+  // its mask; factor 1 here).
+  SweepConfig shaded_config = c;
+  shaded_config.shaded_sheet = true;
+  const ImageF colour = sweep_contact_sheet(r, shaded_config);
+  ASSERT_EQ(colour.channels, 3);
+  ASSERT_EQ(colour.height, l.height);
+  const ImageF shaded = shade_scene(scene, render_gbuffer(scene), r.rows[2].result.mask, c.ambient);
+  int differ = 0;
+  for (int ch = 0; ch < 3; ++ch)
+    for (int y = 0; y < 192; ++y)
+      for (int x = 0; x < 256; ++x) differ += colour.at(l.cell_x(3) + x, l.cell_y(0) + y, ch) != shaded.at(x, y, ch);
+  EXPECT_EQ(differ, 0);
 }
 
 }  // namespace
