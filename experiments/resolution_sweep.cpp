@@ -7,10 +7,12 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/output_file.h"
 #include "core/parallel.h"
 #include "experiments/cli.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
+#include "scenes/scene_registry.h"
 
 using namespace shadowlab;
 
@@ -35,7 +37,15 @@ int main(int argc, char** argv) {
     std::optional<double> ambient;
     add_text(cl, "--sheet", "KIND", "contact sheet of masks or shaded images: mask or shaded (default mask)", sheet);
     add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
+    std::string suite;
+    add_text(cl, "--suite", "NAME", "run every scene of a suite (hard: grazing, contact, depth_range, cluttered; all: those + default, foliage, bunny) instead of --scene: a table per scene in --out/SCENE/, then each setting's fidelity and total per scene with the mean and the worst (default: none)", suite);
     if (!parse_command_line(cl, argc, argv)) return 0;
+    std::vector<std::string> suite_scenes;
+    if (!suite.empty()) {
+      suite_scenes = scene_suite(suite, "--suite");
+      if (common.scene != "default") throw InputError("--suite", "conflicts with --scene");
+      if (!plot.empty() || plot_given) throw InputError("--plot", "is per scene; not with --suite");
+    }
     if (sheet != "mask" && sheet != "shaded")
       throw InputError("--sheet", "expected mask or shaded, got '" + sheet + "'");
     c.shaded_sheet = sheet == "shaded";
@@ -51,6 +61,47 @@ int main(int argc, char** argv) {
     c.out_dir = common.out;
     c.progress = stderr_is_terminal();
     c.max_memory = max_memory_bytes(common);
+    if (!suite_scenes.empty()) {
+      // Every scene built (and its inputs checked) before the first sweep.
+      std::vector<Scene> scenes;
+      for (const std::string& name : suite_scenes) {
+        CommonOptions o = common;
+        o.scene = name;
+        scenes.push_back(scene_from_options(o));
+      }
+      make_output_dir(c.out_dir, "--out");
+      std::vector<SweepResult> results;
+      for (const Scene& scene : scenes) {
+        SweepConfig sc = c;
+        sc.out_dir = c.out_dir + "/" + scene.name;
+        make_output_dir(sc.out_dir, "--out");
+        results.push_back(run_resolution_sweep(scene, sc));
+        const SweepResult& r = results.back();
+        std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
+                    r.scene.c_str(), r.width, r.height, scene.light.radius, c.spp, thread_count(),
+                    r.camera_ms);
+        std::printf("%s\n", sweep_table(r).c_str());
+        write_sweep_csv(sc.out_dir + "/sweep.csv", r);
+        write_sweep_json(sc.out_dir + "/sweep.json", r);
+        if (c.shaded_sheet)
+          write_png_rgb(sc.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, sc));
+        else
+          write_png_grey(sc.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, sc));
+      }
+      std::printf("suite %s: %zu scenes\n%s", suite.c_str(), results.size(), suite_table(results).c_str());
+      std::vector<const SweepResult*> all;
+      for (const SweepResult& r : results) all.push_back(&r);
+      write_sweep_csv(c.out_dir + "/sweep.csv", all);
+      nlohmann::json j;
+      j["suite"] = suite;
+      j["scenes"] = nlohmann::json::array();
+      for (const SweepResult& r : results) j["scenes"].push_back(sweep_json(r));
+      write_text_file(c.out_dir + "/sweep.json", j.dump(2) + "\n");
+      std::printf("wrote %s/sweep.csv, sweep.json (every scene, with a scene column) and per scene "
+                  "SCENE/sweep.csv, sweep.json, contact_sheet.png and every mask and shaded image\n",
+                  c.out_dir.c_str());
+      return 0;
+    }
     const Scene scene = scene_from_options(common);
     make_output_dir(c.out_dir, "--out");
     // Checked before the sweep, which can take minutes, and after --out exists (the plot may go there).

@@ -199,11 +199,17 @@ nlohmann::json row_json(const SweepRow& row) {
 }  // namespace
 
 void write_sweep_csv(const std::string& path, const SweepResult& r) {
+  write_sweep_csv(path, std::vector<const SweepResult*>{&r});
+}
+
+void write_sweep_csv(const std::string& path, const std::vector<const SweepResult*>& results) {
   std::ostringstream f;
-  f << "label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
+  f << "scene,label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
        "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
+  const SweepResult* current = nullptr;
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
+    f << "\"" << current->scene << "\",";
     // Label and spec are quoted: a spec's keys are comma-separated (neither holds a quote).
     // Empty fields where there is no value: the times of a cached reference, the performance
     // score of a row without timings (the reference).
@@ -222,12 +228,48 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
              row.result.faces_rendered)
       << work_csv_values(row.result) << "\n";
   };
-  add(r.reference);
-  for (const SweepRow& row : r.rows) add(row);
+  for (const SweepResult* r : results) {
+    current = r;
+    add(r->reference);
+    for (const SweepRow& row : r->rows) add(row);
+  }
   write_text_file(path, f.str());
 }
 
+std::string suite_table(const std::vector<SweepResult>& results) {
+  SL_CHECK(!results.empty());
+  const size_t n = results[0].rows.size();
+  for (const SweepResult& r : results) SL_CHECK_EQ(r.rows.size(), n);
+  size_t label_w = 18;
+  for (const SweepRow& row : results[0].rows) label_w = std::max(label_w, row.label.size() + 2);
+  std::string s;
+  auto block = [&](const char* title, auto value) {
+    s += fmt::format("{:<{}}", title, label_w);
+    for (const SweepResult& r : results) s += fmt::format(" {:>11}", r.scene.substr(0, 11));
+    s += fmt::format(" {:>8} {:>8}  {}\n", "mean", "worst", "worst on");
+    for (size_t i = 0; i < n; ++i) {
+      s += fmt::format("{:<{}}", results[0].rows[i].label, label_w);
+      double sum = 0.0, worst = 1e300;
+      std::string worst_scene;
+      for (const SweepResult& r : results) {
+        const double v = value(r.rows[i].report);
+        s += fmt::format(" {:>11.3f}", v);
+        sum += v;
+        if (v < worst) worst = v, worst_scene = r.scene;
+      }
+      s += fmt::format(" {:>8.3f} {:>8.3f}  {}\n", sum / double(results.size()), worst, worst_scene);
+    }
+  };
+  block("fidelity", [](const MetricReport& m) { return m.fidelity; });
+  block("total", [](const MetricReport& m) { return m.total; });
+  return s;
+}
+
 void write_sweep_json(const std::string& path, const SweepResult& r) {
+  write_text_file(path, sweep_json(r).dump(2) + "\n");
+}
+
+nlohmann::json sweep_json(const SweepResult& r) {
   nlohmann::json j;
   j["scene"] = r.scene;
   j["width"] = r.width;
@@ -236,7 +278,7 @@ void write_sweep_json(const std::string& path, const SweepResult& r) {
   j["reference"] = row_json(r.reference);
   j["rows"] = nlohmann::json::array();
   for (const SweepRow& row : r.rows) j["rows"].push_back(row_json(row));
-  write_text_file(path, j.dump(2) + "\n");
+  return j;
 }
 
 std::vector<PlotPoint> sweep_plot_points(const SweepResult& r) {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/image.h"
 #include "experiments/pareto_plot.h"
 #include "metric/shadow_metric.h"
@@ -49,7 +51,15 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config);
 // Table in the layout of Kluczek's Table I plus time, RP and total; reference row first.
 std::string sweep_table(const SweepResult& result);
 void write_sweep_csv(const std::string& path, const SweepResult& result);
+// One CSV of several scenes' sweeps (a suite): the same columns, the first one `scene`.
+void write_sweep_csv(const std::string& path, const std::vector<const SweepResult*>& results);
+// The suite summary: per technique and setting (row), each scene's fidelity, then total, with
+// the mean and the worst over the scenes and the scene of the worst. Every result must have
+// the same rows (the same techniques and resolutions).
+std::string suite_table(const std::vector<SweepResult>& results);
 void write_sweep_json(const std::string& path, const SweepResult& result);
+// The object write_sweep_json writes.
+nlohmann::json sweep_json(const SweepResult& result);
 
 // One plot point per technique row (not the reference: compared with itself and without
 // timings, its total is not on the rows' scale): series = technique, time = shadow ms.

@@ -13,13 +13,27 @@ cxx=$(command -v clang++-14 || command -v clang++)
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$cxx" \
       -DSHADOWLAB_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j"$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}" >/dev/null
+# The targets run as many at a time as there are cores (each libFuzzer process is one thread);
+# their results are reported in target order.
+jobs=$(nproc 2>/dev/null || echo 2)
+run_one() {
+  local t=$1
+  (cd build-fuzz && ./fuzz/"$t" -max_total_time="$secs" -rss_limit_mb=2048 -timeout=10 \
+     -print_final_stats=1 "corpus/$t" >"$t.log" 2>&1)
+  echo $? > "build-fuzz/$t.rc"
+}
 for t in "${targets[@]}"; do
   corpus=build-fuzz/corpus/$t
   mkdir -p "$corpus"
   cp -n fuzz/corpus/"${t#fuzz_}"/* "$corpus"/ 2>/dev/null || true
+  rm -f "build-fuzz/$t.rc"
+  run_one "$t" &
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+done
+wait
+for t in "${targets[@]}"; do
   log=build-fuzz/$t.log
-  if ! (cd build-fuzz && ./fuzz/"$t" -max_total_time="$secs" -rss_limit_mb=2048 -timeout=10 \
-          -print_final_stats=1 "corpus/$t" >"$t.log" 2>&1); then
+  if [ "$(cat "build-fuzz/$t.rc" 2>/dev/null || echo 1)" != 0 ]; then
     echo "fuzz: $t FAILED (see $log and the crash-*/timeout-*/oom-* input in build-fuzz/)" >&2
     tail -n 30 "$log" >&2
     exit 1

@@ -4,6 +4,7 @@
 #include "scenes/bunny_scene.h"
 #include "scenes/default_scene.h"
 #include "scenes/foliage_scene.h"
+#include "scenes/hard_scenes.h"
 #include "scenes/room_scenes.h"
 
 namespace shadowlab {
@@ -28,6 +29,21 @@ const std::vector<BuiltinScene>& builtin_scenes() {
       {"foliage", "a palm tree and four plants (alpha-cut leaf cards) on a ground beside a wall, "
                   "one hard point light (needs the shared assets)",
        [] { return make_foliage_scene(); }},
+      {"grazing", "a light 0.6 m over one end of a 40 m floor with posts and a fence of 2 cm "
+                  "slats: long shadows at 1-6 degree incidence (aliasing, acne)",
+       make_grazing_scene},
+      {"contact", "a chair on 3 cm legs, touching boxes, a 4 mm wire and an alpha-textured "
+                  "chain-link fence: peter-panning, leaks, thin occluders",
+       make_contact_scene},
+      {"depth_range", "a light with a 1 cm near plane over a 2.4 km ground, boxes 1 m to 1 km "
+                      "away: depth precision",
+       make_depth_range_scene},
+      {"cluttered", "room100k under its own name in the suite: every cube face used",
+       [] {
+         Scene s = make_room100k_scene();
+         s.name = "cluttered";
+         return s;
+       }},
   };
   return rows;
 }
@@ -48,6 +64,17 @@ Scene make_builtin_scene(const std::string& name) {
   std::string known;
   for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("--scene", "unknown built-in scene '" + name + "' (known: " + known + ")");
+}
+
+std::vector<std::string> scene_suite(const std::string& name, const std::string& flag) {
+  const std::vector<std::string> hard = {"grazing", "contact", "depth_range", "cluttered"};
+  if (name == "hard") return hard;
+  if (name == "all") {
+    std::vector<std::string> all = {"default", "foliage", "bunny"};
+    all.insert(all.end(), hard.begin(), hard.end());
+    return all;
+  }
+  throw InputError(flag, "unknown suite '" + name + "' (known: hard, all)");
 }
 
 std::string builtin_scenes_text() {

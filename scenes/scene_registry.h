@@ -28,4 +28,9 @@ Scene make_builtin_scene(const std::string& name);
 // "name: description" lines, one per scene (for --help and the README).
 std::string builtin_scenes_text();
 
+// Scene suites (--suite NAME): "hard" = grazing, contact, depth_range, cluttered (the cases
+// that separate techniques); "all" = hard + default, foliage and bunny. Throws
+// InputError(flag, ...) for another name.
+std::vector<std::string> scene_suite(const std::string& name, const std::string& flag);
+
 }  // namespace shadowlab

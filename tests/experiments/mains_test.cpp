@@ -2,6 +2,8 @@
 // file and exit code 2; good input writes the promised files.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -450,6 +452,42 @@ TEST(Mains, CachedReferenceTimesAreNull) {
   const std::string csv = file_bytes(out + "/sweep.csv");
   const std::string ref_line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
   EXPECT_NE(ref_line.find("100.0000,,,,,1.000000"), std::string::npos) << ref_line;
+}
+
+// --suite hard: one sweep per scene in --out/SCENE/, a summary with each scene's fidelity and
+// total and the mean and worst per setting, one CSV with a scene column over all four.
+TEST(Mains, SuiteSweepsEveryScene) {
+  const std::string out = test::binary_path("suite_out");
+  std::filesystem::remove_all(out);
+  const ProcResult r = run("resolution_sweep --suite hard --quick --width 48 --height 36 --spp 4 "
+                           "--resolutions 32 --techniques csm,cvsm --no-cache --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("suite hard: 4 scenes"), std::string::npos) << r.out;
+  for (const char* scene : {"grazing", "contact", "depth_range", "cluttered"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + scene + "/sweep.csv")) << scene;
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + scene + "/contact_sheet.png")) << scene;
+  }
+  std::istringstream csv(file_bytes(out + "/sweep.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("scene,label,", 0), 0u) << line;
+  std::map<std::string, int> rows;
+  while (std::getline(csv, line)) ++rows[line.substr(1, line.find('"', 1) - 1)];
+  EXPECT_EQ(rows.size(), 4u);
+  for (const auto& [scene, n] : rows) EXPECT_EQ(n, 3) << scene;  // reference + 2 techniques
+  // The summary's mean is the mean of the scene columns (checked on the first fidelity row).
+  const size_t at = r.out.find("CSM 32", r.out.find("suite hard"));
+  ASSERT_NE(at, std::string::npos);
+  std::istringstream row(r.out.substr(at + 6, r.out.find('\n', at) - at - 6));
+  double v[6];
+  for (double& x : v) row >> x;
+  EXPECT_NEAR(v[4], (v[0] + v[1] + v[2] + v[3]) / 4.0, 0.0015);
+  EXPECT_NEAR(v[5], std::min({v[0], v[1], v[2], v[3]}), 1e-9);
+  const nlohmann::json j = nlohmann::json::parse(file_bytes(out + "/sweep.json"));
+  EXPECT_EQ(j["suite"], "hard");
+  EXPECT_EQ(j["scenes"].size(), 4u);
+  expect_clear_error("resolution_sweep --suite easy --out " + out, "--suite");
+  expect_clear_error("resolution_sweep --suite hard --scene plane --out " + out, "--suite");
 }
 
 // Every CSV row has the header's field count when commas inside quotes are not separators: a
