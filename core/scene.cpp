@@ -81,6 +81,10 @@ void validate_scene(const Scene& scene, const std::string& where) {
     if (mat.alpha_texture >= 0 && (scene.textures[size_t(mat.alpha_texture)].channels != 4 ||
                                    scene.textures[size_t(mat.alpha_texture)].empty()))
       throw InputError(where, "material '" + mat.name + "': its alpha texture is not a non-empty RGBA image");
+    if (mat.color_texture >= int(scene.textures.size()) ||
+        (mat.color_texture >= 0 && (scene.textures[size_t(mat.color_texture)].channels != 4 ||
+                                    scene.textures[size_t(mat.color_texture)].empty())))
+      throw InputError(where, "material '" + mat.name + "': its colour texture is not a non-empty RGBA image");
     if (!(mat.alpha_cutoff >= 0.0f && mat.alpha_cutoff <= 1.0f))
       throw InputError(where, "material '" + mat.name + "': alpha cutoff must lie in [0, 1]");
   }

@@ -17,6 +17,11 @@ struct Material {
   vec3 albedo{0.8f};          // linear diffuse colour
   int alpha_texture = -1;     // index into Scene::textures (RGBA; alpha in channel 3), -1: opaque
   float alpha_cutoff = 0.5f;  // a fragment with alpha < cutoff is discarded (both passes)
+  // Colour texture (RGBA, linear; index into Scene::textures, -1: none): the albedo at a point
+  // of a mesh with uvs is color_factor × its RGB there (core/texture.h sample_rgb), used by the
+  // shaded pictures; `albedo` stays the mean colour (color_factor × the texture's mean).
+  int color_texture = -1;
+  vec3 color_factor{1.0f};
 };
 
 struct Mesh {

@@ -71,6 +71,18 @@ inline float sample_alpha(const ImageF& rgba, vec2 uv) {
   return rgba.data[(size_t(3) * size_t(h) + size_t(h - 1 - row_from_bottom)) * size_t(w) + size_t(x)];
 }
 
+// Linear RGB of an RGBA ImageF at texture coordinate uv: the texel sample_alpha reads.
+inline vec3 sample_rgb(const ImageF& rgba, vec2 uv) {
+  const int w = rgba.width, h = rgba.height;
+  int x = int(wrap01(uv.x) * float(w));
+  int row_from_bottom = int(wrap01(uv.y) * float(h));
+  if (x >= w) x = w - 1;
+  if (row_from_bottom >= h) row_from_bottom = h - 1;
+  const size_t texel = size_t(h - 1 - row_from_bottom) * size_t(w) + size_t(x);
+  const size_t plane = size_t(w) * size_t(h);
+  return vec3(rgba.data[texel], rgba.data[plane + texel], rgba.data[2 * plane + texel]);
+}
+
 // Texture coordinate at barycentrics (b1, b2) of triangle `tri` (3 vertex indices) of a mesh
 // with per-vertex `uvs`: (1 − b1 − b2)·uv0 + b1·uv1 + b2·uv2, in this order, the one
 // interpolation of the rasterizer (perspective-correct barycentrics) and of Embree's filters

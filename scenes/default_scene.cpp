@@ -6,17 +6,6 @@
 #include "scenes/mesh_builders.h"
 
 namespace shadowlab {
-namespace {
-
-
-mat4 box_model(vec3 centre, vec3 size, float yaw_deg = 0.0f, vec3 axis = vec3(0, 1, 0)) {
-  mat4 m = glm::translate(mat4(1.0f), centre);
-  m = glm::rotate(m, glm::radians(yaw_deg), axis);
-  return glm::scale(m, size);
-}
-
-}  // namespace
-
 // The default scene. Room: x, z in [-5, 5], y in [0, 4] (floor y = 0). Light L = (0.9, 2.7,
 // -0.4). The cube face an object falls in is the major axis of (object − L).
 Scene make_default_scene() {
@@ -40,7 +29,7 @@ Scene make_default_scene() {
   // Box: 0.9 m cube on the floor at (-1.8, 0.45, -1.2), turned 30° about y. Contact shadow,
   // cast towards -x onto the floor (light face -x).
   add_box(new_mesh(s, "box", vec3(0.75f, 0.45f, 0.30f)),
-          box_model(vec3(-1.8f, 0.45f, -1.2f), vec3(0.9f), 30.0f));
+          box_transform(vec3(-1.8f, 0.45f, -1.2f), vec3(0.9f), 30.0f));
 
   // Sphere: radius 0.5 m resting on the floor at (1.9, 0.5, 0.9), 32 × 16 (960 triangles),
   // smooth. Contact shadow cast towards +x/+z, the camera (light face -y).
@@ -59,10 +48,10 @@ Scene make_default_scene() {
   {
     Mesh& table = new_mesh(s, "table", vec3(0.55f, 0.40f, 0.25f));
     const vec3 c(2.2f, 0.0f, -2.3f);
-    add_box(table, box_model(c + vec3(0.0f, 0.75f, 0.0f), vec3(1.6f, 0.06f, 1.0f)));
+    add_box(table, box_transform(c + vec3(0.0f, 0.75f, 0.0f), vec3(1.6f, 0.06f, 1.0f)));
     for (int i = 0; i < 4; ++i) {
       const float sx = (i & 1) ? 1.0f : -1.0f, sz = (i & 2) ? 1.0f : -1.0f;
-      add_box(table, box_model(c + vec3(sx * 0.70f, 0.36f, sz * 0.42f), vec3(0.05f, 0.72f, 0.05f)));
+      add_box(table, box_transform(c + vec3(sx * 0.70f, 0.36f, sz * 0.42f), vec3(0.05f, 0.72f, 0.05f)));
     }
   }
 
@@ -72,7 +61,7 @@ Scene make_default_scene() {
   // grazes the light (N·L ≈ 0.08–0.14 over the top); the pole's shadow crosses it (light face
   // -x).
   add_box(new_mesh(s, "ramp", vec3(0.60f, 0.65f, 0.50f)),
-          box_model(vec3(-2.5f, 0.53f, 1.5f), vec3(2.0f, 0.04f, 1.6f), 40.0f, vec3(1, 0, 0)));
+          box_transform(vec3(-2.5f, 0.53f, 1.5f), vec3(2.0f, 0.04f, 1.6f), 40.0f, vec3(1, 0, 0)));
 
   // Light: off-centre, inside the room; far bounds the room diagonal (√(10² + 4² + 10²) ≈
   // 14.7 m).

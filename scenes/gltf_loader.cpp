@@ -401,6 +401,9 @@ class Loader {
       for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < 3; ++c) sum[c] += srgb8_to_linear(tex.rgba[4 * i + size_t(c)]);
       for (int c = 0; c < 3; ++c) m.albedo[c] *= float(sum[c] / double(n));
+      m.color_factor = vec3(factor);
+      s.textures.push_back(texture_to_linear_rgba(tex));
+      m.color_texture = int(s.textures.size()) - 1;
     }
     std::string mode = gm.alphaMode.empty() ? "OPAQUE" : gm.alphaMode;
     float cutoff = float(gm.alphaCutoff);

@@ -16,8 +16,9 @@
 //   vertex count; positions finite.
 //
 // Materials (metallic-roughness core; other extensions are ignored)
-// - albedo = baseColorFactor.rgb × (with a baseColorTexture) the mean linear colour of the
-//   texture (sRGB-decoded), as for OBJ's map_Kd (Material has no colour texture).
+// - The baseColorTexture (sRGB-decoded) is the material's colour texture with baseColorFactor.rgb
+//   as its factor (Material::color_texture); albedo = the factor × the texture's mean linear
+//   colour, as for OBJ's map_Kd.
 // - alphaMode MASK: the baseColorTexture's alpha × baseColorFactor.a becomes the alpha texture
 //   with cutoff alphaCutoff (default 0.5), used by the camera pass, every shadow-map pass and
 //   Embree's filters; without a texture, a 1×1 alpha texture of baseColorFactor.a. BLEND is

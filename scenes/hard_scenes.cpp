@@ -8,12 +8,6 @@
 namespace shadowlab {
 namespace {
 
-mat4 box_at(vec3 centre, vec3 size, float yaw_deg = 0.0f) {
-  mat4 m = glm::translate(mat4(1.0f), centre);
-  m = glm::rotate(m, glm::radians(yaw_deg), vec3(0, 1, 0));
-  return glm::scale(m, size);
-}
-
 // A chain-link pattern: wires along both diagonals of each cell of an n × n grid over the
 // texture, `wire` (fraction of a cell) wide; alpha 1 on the wires, 0 in the holes. RGBA, planar.
 ImageF chain_link_texture(int size, int cells, float wire) {
@@ -42,15 +36,15 @@ Scene make_grazing_scene() {
   Mesh& posts = new_mesh(s, "posts", vec3(0.45f, 0.35f, 0.25f));
   for (int i = 0; i < 10; ++i) {
     const float x = -14.0f + 3.0f * float(i);
-    add_box(posts, box_at(vec3(x, 0.6f, -2.5f), vec3(0.1f, 1.2f, 0.1f)));
-    add_box(posts, box_at(vec3(x + 1.5f, 0.45f, 2.5f), vec3(0.08f, 0.9f, 0.08f), 30.0f));
+    add_box(posts, box_transform(vec3(x, 0.6f, -2.5f), vec3(0.1f, 1.2f, 0.1f)));
+    add_box(posts, box_transform(vec3(x + 1.5f, 0.45f, 2.5f), vec3(0.08f, 0.9f, 0.08f), 30.0f));
   }
   // A fence of 60 slats 2 cm thick, 15 cm apart, across the light's view at x = −6 m: thin
   // occluders whose shadows are thin stripes kilometre-long in texel terms.
   Mesh& fence = new_mesh(s, "fence", vec3(0.6f, 0.5f, 0.4f));
   for (int i = 0; i < 60; ++i)
-    add_box(fence, box_at(vec3(-6.0f, 0.4f, -4.5f + 0.15f * float(i)), vec3(0.02f, 0.8f, 0.05f)));
-  add_box(fence, box_at(vec3(-6.0f, 0.82f, 0.0f), vec3(0.03f, 0.04f, 9.0f)));  // the top rail
+    add_box(fence, box_transform(vec3(-6.0f, 0.4f, -4.5f + 0.15f * float(i)), vec3(0.02f, 0.8f, 0.05f)));
+  add_box(fence, box_transform(vec3(-6.0f, 0.82f, 0.0f), vec3(0.03f, 0.04f, 9.0f)));  // the top rail
   s.light.position = vec3(-19.0f, 0.6f, 0.3f);
   s.light.radius = 0.02f;
   s.light.near = 0.05f;
@@ -74,14 +68,14 @@ Scene make_contact_scene() {
   Mesh& chair = new_mesh(s, "chair", vec3(0.55f, 0.38f, 0.22f));
   for (int i = 0; i < 4; ++i) {
     const float x = (i & 1) ? 0.2f : -0.2f, z = (i & 2) ? 0.2f : -0.2f;
-    add_box(chair, box_at(vec3(-0.8f + x, 0.225f, 0.3f + z), vec3(0.03f, 0.45f, 0.03f)));
+    add_box(chair, box_transform(vec3(-0.8f + x, 0.225f, 0.3f + z), vec3(0.03f, 0.45f, 0.03f)));
   }
-  add_box(chair, box_at(vec3(-0.8f, 0.465f, 0.3f), vec3(0.46f, 0.03f, 0.46f)));
-  add_box(chair, box_at(vec3(-0.8f, 0.75f, 0.085f), vec3(0.46f, 0.55f, 0.03f)));
+  add_box(chair, box_transform(vec3(-0.8f, 0.465f, 0.3f), vec3(0.46f, 0.03f, 0.46f)));
+  add_box(chair, box_transform(vec3(-0.8f, 0.75f, 0.085f), vec3(0.46f, 0.55f, 0.03f)));
   // A box resting on the floor and another leaning against it (touching occluders).
   Mesh& boxes = new_mesh(s, "boxes", vec3(0.4f, 0.5f, 0.65f));
-  add_box(boxes, box_at(vec3(0.7f, 0.2f, 0.6f), vec3(0.4f, 0.4f, 0.4f), 20.0f));
-  add_box(boxes, box_at(vec3(1.15f, 0.1f, 0.9f), vec3(0.3f, 0.2f, 0.3f), -10.0f));
+  add_box(boxes, box_transform(vec3(0.7f, 0.2f, 0.6f), vec3(0.4f, 0.4f, 0.4f), 20.0f));
+  add_box(boxes, box_transform(vec3(1.15f, 0.1f, 0.9f), vec3(0.3f, 0.2f, 0.3f), -10.0f));
   // A wire 4 mm thick strung 1.2 m above the floor (the thinnest occluder).
   Mesh& wire = new_mesh(s, "wire", vec3(0.2f));
   {
@@ -138,7 +132,7 @@ Scene make_depth_range_scene() {
   Mesh& boxes = new_mesh(s, "boxes", vec3(0.45f, 0.5f, 0.6f));
   for (int i = 0; i < 4; ++i) {
     const float d = std::pow(10.0f, float(i));
-    add_box(boxes, box_at(vec3(d, 0.05f * d, -0.02f * d), vec3(0.1f * d), 25.0f));
+    add_box(boxes, box_transform(vec3(d, 0.05f * d, -0.02f * d), vec3(0.1f * d), 25.0f));
   }
   s.light.position = vec3(0.0f, 0.5f, 0.0f);
   s.light.radius = 0.0f;

@@ -21,6 +21,12 @@ int add_quad_mesh(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material,
   return int(scene.meshes.size()) - 1;
 }
 
+mat4 box_transform(vec3 centre, vec3 size, float deg, vec3 axis) {
+  mat4 m = glm::translate(mat4(1.0f), centre);
+  m = glm::rotate(m, glm::radians(deg), axis);
+  return glm::scale(m, size);
+}
+
 Mesh& new_mesh(Scene& scene, const std::string& name, vec3 albedo) {
   Material mat;
   mat.name = name;

@@ -20,6 +20,10 @@ int add_quad_mesh(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material = 0
 // (2 triangles each). Front side and flat normal: normalize(cross(edge_u, edge_v)).
 void add_grid_quad(Mesh& mesh, vec3 origin, vec3 edge_u, vec3 edge_v, int nu, int nv);
 
+// The `model` for add_box of a box of `size` (m) centred at `centre`, turned by `deg` degrees
+// about `axis` through its centre.
+mat4 box_transform(vec3 centre, vec3 size, float deg = 0.0f, vec3 axis = vec3(0, 1, 0));
+
 // Box = the unit cube [-0.5, 0.5]³ mapped by `model` (scale, rotate, translate; determinant
 // > 0). 24 vertices (flat normals per face), 12 triangles, outward.
 void add_box(Mesh& mesh, const mat4& model);

@@ -305,6 +305,14 @@ class MaterialBuilder {
     return alpha_[key] = index;
   }
 
+  // Index into scene.textures of the linear RGBA colour texture of a map_Kd file (one per file).
+  int color_texture(const std::string& path) {
+    const std::string key = path + "#colour";
+    if (auto it = alpha_.find(key); it != alpha_.end()) return it->second;
+    scene_.textures.push_back(texture_to_linear_rgba(files_.at(path)));
+    return alpha_[key] = int(scene_.textures.size()) - 1;
+  }
+
   Material convert(size_t id) {
     const tinyobj::material_t& tm = mats_[id];
     const std::string dir = fs::path(source_mtl_[id]).parent_path().string();
@@ -333,7 +341,11 @@ class MaterialBuilder {
       notes_.add("material '" + m.name + "': d " + (std::ostringstream() << tm.dissolve).str() +
                  " ignored (no translucency); " +
                  (m.alpha_texture >= 0 ? "its alpha texture is the cutout" : "treated as opaque"));
-    if (kd) m.albedo *= mean_colour(*kd, m.alpha_cutoff);
+    if (kd) {
+      m.color_factor = m.albedo;
+      m.color_texture = color_texture(kd_path);
+      m.albedo *= mean_colour(*kd, m.alpha_cutoff);
+    }
     return m;
   }
 

@@ -18,7 +18,8 @@
 //
 // Material rules
 // - albedo = Kd × (when map_Kd is present) the mean linear colour of map_Kd over the texels
-//   that pass the alpha test (Material has no colour texture; this keeps previews coloured).
+//   that pass the alpha test; map_Kd (linear RGBA) is also the colour texture with Kd as its
+//   factor (Material::color_texture, for the shaded pictures).
 //   A material with map_Kd but no Kd line gets Kd = 0.6 (tinyobjloader's default).
 // - Alpha (cutout) texture: map_d when present — its alpha channel if the file has one,
 //   otherwise its grey (red) channel, as stored. Without map_d, map_Kd becomes the alpha

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/texture.h"
 #include "techniques/projector_shading.h"
 
 namespace shadowlab {
@@ -21,7 +22,11 @@ ImageF shade_scene(const Scene& scene, const GBuffer& g, const ImageF& visibilit
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       if (!g.covered[i]) continue;
-      const vec3 albedo = scene.materials[size_t(scene.meshes[g.mesh_id[i]].material)].albedo;
+      const Mesh& mesh = scene.meshes[g.mesh_id[i]];
+      const Material& mat = scene.materials[size_t(mesh.material)];
+      const vec3 albedo = mat.color_texture >= 0 && !mesh.uvs.empty()
+                              ? mat.color_factor * sample_rgb(scene.textures[size_t(mat.color_texture)], g.uv[i])
+                              : mat.albedo;
       const vec3 to_light = light - g.position[i];
       const float len = glm::length(to_light);
       const float ndl = len > 0.0f ? std::max(0.0f, glm::dot(g.normal[i], to_light / len)) : 0.0f;

@@ -4,8 +4,9 @@
 //   slide projector: shade_projector (techniques/projector_shading.h), the slide's colour in L
 // per covered pixel, linear RGB, the light of unit intensity without distance falloff (the
 // picture shows where the shadows are, not a radiometric quantity); N is the GBuffer's shading
-// normal, L the unit direction to the light, albedo the material's (for a textured material,
-// its texture's mean colour: Material holds no colour texture). Pixels without geometry black.
+// normal, L the unit direction to the light, albedo the material's colour texture at the
+// pixel's uv times its factor (Material::color_texture: OBJ map_Kd × Kd, glTF baseColorTexture
+// × baseColorFactor), else its albedo. Pixels without geometry black.
 #include "core/gbuffer.h"
 #include "core/image.h"
 #include "core/scene.h"

@@ -18,6 +18,7 @@
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"
 #include "scenes/gltf_loader.h"
+#include "techniques/scene_shading.h"
 #include "techniques/technique.h"
 #include "test_paths.h"
 
@@ -97,10 +98,12 @@ std::string lit_scene(const std::string& file, bool with_light = true, bool with
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) {
       uint8_t* p = &rgba[size_t(4 * (8 * y + x))];
-      p[0] = 40;
-      p[1] = 160;
-      p[2] = 60;
-      p[3] = ((x / 2 + y / 2) % 2) ? 0 : 255;
+      // Opaque texels green (40, 160, 60), cut-out ones red: the mean colour is neither.
+      const bool hole = (x / 2 + y / 2) % 2;
+      p[0] = hole ? 255 : 40;
+      p[1] = hole ? 0 : 160;
+      p[2] = hole ? 0 : 60;
+      p[3] = hole ? 0 : 255;
     }
   std::vector<uint8_t> png;
   stbi_write_png_to_func(
@@ -245,6 +248,24 @@ TEST(Gltf, AlphaMaskBecomesTheAlphaTexture) {
   EXPECT_EQ(sample_alpha(t, vec2(0.26f, 0.99f)), 0.0f);   // texel (2, 0)
   // The floor stays opaque.
   EXPECT_EQ(s.materials[size_t(s.meshes[0].material)].alpha_texture, -1);
+  // The base colour texture is the colour texture: shaded card pixels have their opaque texels'
+  // colour, sRGB (40, 160, 60) decoded, whatever their lighting (a ratio of channels), not the
+  // texture's mean (which the cut-out red texels pull towards red).
+  ASSERT_GE(mat.color_texture, 0);
+  Scene small = s;
+  small.camera.width = 160;
+  small.camera.height = 120;
+  const GBuffer g = render_gbuffer(small);
+  ImageF vis(g.width, g.height, 1, 1.0f);
+  const ImageF shaded = shade_scene(small, g, vis, 0.1f);
+  const float ratio = srgb8_to_linear(160) / srgb8_to_linear(40);
+  size_t card = 0;
+  for (size_t i = 0; i < g.pixel_count(); ++i) {
+    if (!g.covered[i] || small.meshes[g.mesh_id[i]].name != "leaf/0") continue;
+    ++card;
+    EXPECT_NEAR(shaded.data[g.pixel_count() + i] / shaded.data[i], ratio, 1e-4f * ratio);
+  }
+  EXPECT_GT(card, 20u);
 }
 
 // The scene renders with every technique (finite masks in [0, 1]); the camera pass agrees with

@@ -317,6 +317,12 @@ TEST(ObjLoader, AlphaTextureRules) {
   EXPECT_EQ(tex.at(3, 1, 3), 1.0f);  // grey 255 → alpha 1
   // Albedo = Kd × mean linear colour of the texels that pass the alpha test.
   EXPECT_NEAR(d.albedo.x, 0.5776f, 1e-3f);  // sRGB 200 → linear 0.5776
+  // map_Kd is also the colour texture (linear RGB), with Kd as its factor; without map_Kd none.
+  ASSERT_GE(k.color_texture, 0);
+  EXPECT_EQ(k.color_factor, vec3(1.0f));
+  EXPECT_NEAR(s.textures[size_t(k.color_texture)].at(0, 0, 1), 0.1274f, 1e-3f);  // sRGB 100
+  EXPECT_EQ(mat("dissolved").color_texture, -1);
+  EXPECT_EQ(g.color_texture, -1);
   bool dissolve_note = false;
   for (const std::string& n : notes) dissolve_note |= n.find("dissolved") != std::string::npos;
   EXPECT_TRUE(dissolve_note) << "d < 1 without map_d gives a note";
