@@ -467,6 +467,25 @@ void check_view_header_line(const std::string& path, size_t line_no, const std::
   };
   bool has_vector = false;
   for (size_t i = 0; i < line.size() && !has_vector; ++i) has_vector = line[i] == '(' && is_vector_at(i);
+  // A "(" right after a position key (light, eye, target, up) must open a position, even on a
+  // line with no valid one ("# light (0,4)" is a broken header line, not free text).
+  {
+    std::string w;
+    for (size_t i = 0; i < line.size(); ++i) {
+      const unsigned char c = static_cast<unsigned char>(line[i]);
+      if (std::isalpha(c)) {
+        if (i == 0 || !std::isalpha(static_cast<unsigned char>(line[i - 1]))) w.clear();
+        w += char(std::tolower(c));
+      } else if (c == '(') {
+        if (std::any_of(std::begin(kVectorKeys), std::end(kVectorKeys), [&](const char* k) { return w == k; }) &&
+            !is_vector_at(i))
+          fail("'" + w + "' is followed by a malformed position (expected (x,y,z))");
+        w.clear();
+      } else if (c != ' ' && c != '\t') {
+        w.clear();
+      }
+    }
+  }
   if (!has_vector) return;
   std::string word;  // the last word, lower case, while only spaces follow it
   for (size_t i = 0; i < line.size(); ++i) {
@@ -523,6 +542,18 @@ ObjViewHeader read_obj_view_header(const std::string& path) {
     if (first == std::string::npos) continue;
     if (line[first] != '#') break;  // the header ends at the first statement
     check_view_header_line(path, line_no, line);
+    // A line with a camera's positions must be a whole camera line: "camera eye (x,y,z) target
+    // (x,y,z)" (a misspelled "camera" would drop the camera without a word).
+    {
+      std::string low = line;
+      for (char& ch : low) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      vec3 e, t;
+      if ((vec_after(low, "eye", e) || vec_after(low, "target", t)) &&
+          !(vec_after(low, "camera eye", e) && vec_after(low, "target", t)))
+        throw InputError(path, "line " + std::to_string(line_no) +
+                                   " (view header): a camera line reads 'camera eye (x,y,z) target "
+                                   "(x,y,z)'");
+    }
     vec3 p;
     if (line.find("light") != std::string::npos && vec_after(line, "light", p)) {
       PointLight l;

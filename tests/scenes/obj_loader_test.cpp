@@ -371,6 +371,11 @@ TEST(ObjLoader, ViewHeaderTyposAreErrors) {
   expect_header_error("typo_target.obj", "# camera eye (0,4.5,9.5) targte (0,3,0)\n", "'targte'");
   expect_header_error("typo_near.obj", "# light (0,4,0) naer 0.05 far 40\n", "misspelled 'near'");
   expect_header_error("typo_fov.obj", "# camera eye (0,1,5) target (0,0,0) vertical fvo 45\n", "misspelled 'fov'");
+  // Malformed positions and a misspelled "camera" drop nothing silently either.
+  expect_header_error("short_eye.obj", "# camera eye (0,1) target (0,0,0)\n", "'eye' is followed by a malformed position");
+  expect_header_error("short_light.obj", "# point light (0,4), near 0.05\n", "'light' is followed by a malformed position");
+  expect_header_error("typo_camera.obj", "# camra eye (0,1,2) target (0,0,0)\n", "a camera line reads");
+  expect_header_error("no_target.obj", "# camera eye (0,1,2)\n", "a camera line reads");
   const ObjViewHeader free = read_obj_view_header(
       write_file("free_text.obj", std::string("# made with a tool (v2), far from perfect: 3 parts\n") + kTriangle));
   EXPECT_FALSE(free.light.has_value());
