@@ -5,23 +5,9 @@
 #include "core/assets.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
+#include "scenes/scene_merge.h"
 
 namespace shadowlab {
-
-void append_scene(Scene& dst, const Scene& src, float scale, const vec3& offset) {
-  const int mat_base = int(dst.materials.size());
-  const int tex_base = int(dst.textures.size());
-  for (Material m : src.materials) {
-    if (m.alpha_texture >= 0) m.alpha_texture += tex_base;
-    dst.materials.push_back(m);
-  }
-  for (const ImageF& t : src.textures) dst.textures.push_back(t);
-  for (Mesh m : src.meshes) {
-    for (vec3& p : m.positions) p = p * scale + offset;
-    m.material += mat_base;
-    dst.meshes.push_back(std::move(m));
-  }
-}
 
 Scene make_foliage_scene(std::vector<std::string>* notes) {
   const char* where = "--scene foliage";
@@ -42,8 +28,13 @@ Scene make_foliage_scene(std::vector<std::string>* notes) {
       {"plants/parviflora.obj", {0.5f, 0.0f, 1.0f}},
       {"plants/fern3.obj", {-2.6f, 0.22f, 0.7f}},
   };
-  for (const Placement& p : plants)
-    append_scene(s, load_obj_scene(shared_asset_path(p.asset, where), notes), 0.01f, p.at);
+  for (const Placement& p : plants) {
+    Scene plant = load_obj_scene(shared_asset_path(p.asset, where), notes);
+    // Centimetres to metres, then placed (a uniform positive scale: normals unchanged).
+    for (Mesh& m : plant.meshes)
+      for (vec3& q : m.positions) q = q * 0.01f + p.at;
+    append_scene(s, std::move(plant));
+  }
 
   s.light.position = vec3(2.5f, 5.5f, 4.5f);
   s.light.radius = 0.0f;

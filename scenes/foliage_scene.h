@@ -21,9 +21,4 @@ namespace shadowlab {
 // InputError naming "--scene foliage" when an asset is missing.
 Scene make_foliage_scene(std::vector<std::string>* notes = nullptr);
 
-// Appends src's meshes, materials and textures to dst, positions mapped by `scale` then
-// `offset` (normals unchanged: a uniform positive scale), indices re-based. Keeps dst's
-// light and camera.
-void append_scene(Scene& dst, const Scene& src, float scale, const vec3& offset);
-
 }  // namespace shadowlab

@@ -15,6 +15,7 @@
 #include "scenes/scene_library.h"
 #include "core/slide.h"
 #include "scenes/gltf_loader.h"
+#include "scenes/scene_merge.h"
 
 namespace shadowlab {
 namespace {
@@ -93,19 +94,12 @@ class Reader {
   std::string prefix_;
 };
 
-// Appends `src`'s meshes, materials and textures to `dst`, with positions mapped by `m` and
-// normals by its inverse transpose (a mirroring transform reverses the winding).
-void append_model(Scene& dst, Scene src, const mat4& m) {
-  const int material_base = int(dst.materials.size());
-  const int texture_base = int(dst.textures.size());
-  for (Material& mat : src.materials) {
-    if (mat.alpha_texture >= 0) mat.alpha_texture += texture_base;
-    dst.materials.push_back(std::move(mat));
-  }
-  for (ImageF& t : src.textures) dst.textures.push_back(std::move(t));
+// Maps a model's geometry by `m`: positions, normals by the inverse transpose, and the winding
+// reversed under a mirroring transform.
+void transform_model(Scene& model, const mat4& m) {
   const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
   const bool flip = glm::determinant(glm::mat3(m)) < 0.0f;
-  for (Mesh& mesh : src.meshes) {
+  for (Mesh& mesh : model.meshes) {
     for (vec3& p : mesh.positions) p = vec3(m * glm::vec4(p, 1.0f));
     for (vec3& n : mesh.normals) {
       const vec3 t = nm * n;
@@ -114,8 +108,6 @@ void append_model(Scene& dst, Scene src, const mat4& m) {
     }
     if (flip)
       for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-    mesh.material += material_base;
-    dst.meshes.push_back(std::move(mesh));
   }
 }
 
@@ -205,7 +197,8 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
       } else {
         model = load_obj_scene(file, notes);
       }
-      append_model(s, std::move(model), xf);
+      transform_model(model, xf);
+      append_scene(s, std::move(model));
     }
   }
 
