@@ -18,36 +18,47 @@ namespace {
 // The camera pass leaves, per 16×16 block, the min and max of its covered positions; the
 // image height 120 is not a multiple of 16, so the last block row is partial.
 TEST(FacesNeeded, BlockBoundsAreTheCoveredPositionsBounds) {
-  const Scene scene = test::small_scene("default", 152, 120);
-  const GBuffer g = render_gbuffer(scene);
-  ASSERT_TRUE(g.has_block_bounds());
-  ASSERT_EQ(g.block_bounds.size(), size_t(10 * 8));
-  int empty = 0;
-  for (int by = 0; by < g.blocks_y(); ++by)
-    for (int bx = 0; bx < g.blocks_x(); ++bx) {
-      vec3 lo(1e30f), hi(-1e30f);
-      bool any = false;
-      for (int y = by * 16; y < std::min(g.height, by * 16 + 16); ++y)
-        for (int x = bx * 16; x < std::min(g.width, bx * 16 + 16); ++x) {
-          const size_t i = size_t(y) * size_t(g.width) + size_t(x);
-          if (!g.covered[i]) continue;
-          any = true;
-          for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], g.position[i][k]);
-            hi[k] = std::max(hi[k], g.position[i][k]);
+  int empty = 0, blocks = 0;
+  // The default view covers every block; from 6x as far away the scene fills only part of
+  // the image, so empty blocks occur too.
+  for (const float distance : {1.0f, 6.0f}) {
+    SCOPED_TRACE(distance);
+    Scene scene = test::small_scene("default", 152, 120);
+    scene.camera.eye = scene.camera.target + distance * (scene.camera.eye - scene.camera.target);
+    scene.camera.far *= distance;
+    const GBuffer g = render_gbuffer(scene);
+    ASSERT_TRUE(g.has_block_bounds());
+    ASSERT_EQ(g.block_bounds.size(), size_t(10 * 8));
+    for (int by = 0; by < g.blocks_y(); ++by)
+      for (int bx = 0; bx < g.blocks_x(); ++bx) {
+        vec3 lo(1e30f), hi(-1e30f);
+        bool any = false;
+        for (int y = by * 16; y < std::min(g.height, by * 16 + 16); ++y)
+          for (int x = bx * 16; x < std::min(g.width, bx * 16 + 16); ++x) {
+            const size_t i = size_t(y) * size_t(g.width) + size_t(x);
+            if (!g.covered[i]) continue;
+            any = true;
+            for (int k = 0; k < 3; ++k) {
+              lo[k] = std::min(lo[k], g.position[i][k]);
+              hi[k] = std::max(hi[k], g.position[i][k]);
+            }
           }
+        const BlockBounds& b = g.block_bounds[size_t(by * g.blocks_x() + bx)];
+        ASSERT_EQ(b.empty(), !any) << bx << "," << by;
+        empty += !any;
+        ++blocks;
+        if (any) {
+          EXPECT_EQ(b.lo, lo) << bx << "," << by;
+          EXPECT_EQ(b.hi, hi) << bx << "," << by;
         }
-      const BlockBounds& b = g.block_bounds[size_t(by * g.blocks_x() + bx)];
-      ASSERT_EQ(b.empty(), !any) << bx << "," << by;
-      empty += !any;
-      if (any) {
-        EXPECT_EQ(b.lo, lo) << bx << "," << by;
-        EXPECT_EQ(b.hi, hi) << bx << "," << by;
       }
-    }
-  GBuffer copy = g;
-  copy.resize(8, 8);
-  EXPECT_FALSE(copy.has_block_bounds());  // a rewritten GBuffer gets no stale bounds
+    GBuffer copy = g;
+    copy.resize(8, 8);
+    EXPECT_FALSE(copy.has_block_bounds());  // a rewritten GBuffer gets no stale bounds
+  }
+  // Both kinds of block occur, so neither case is vacuous.
+  EXPECT_GT(empty, 0);
+  EXPECT_LT(empty, blocks);
 }
 
 // Every point of a decided box (grown by `reach`) maps to the decided face, with its whole PCF
