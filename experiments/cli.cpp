@@ -1,4 +1,5 @@
 #include "experiments/cli.h"
+#include "experiments/provenance.h"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -157,6 +158,32 @@ void add_int_list(CommandLine& cl, const std::string& flag, const std::string& p
     for (const std::string& item : split(s, ','))
       value.push_back(int_in(flag, item, lo, hi));
   });
+}
+
+void add_double_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                     const std::string& help, std::vector<double>& value, double lo, double hi) {
+  add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
+    value.clear();
+    for (const std::string& item : split(s, ',')) {
+      const double v = parse_double(flag, item);
+      if (!(v >= lo && v <= hi))
+        throw InputError(flag, item + " is outside [" + number_text(lo) + ", " + number_text(hi) + "]");
+      value.push_back(v);
+    }
+  });
+}
+
+void add_text_repeated(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                       const std::string& help, std::vector<std::string>& values) {
+  const CLI::callback_t take = [flag, &values](const CLI::results_t& given) {
+    for (const std::string& v : given) {
+      if (v.rfind("--", 0) == 0) throw InputError(flag, "expects a value, got the flag '" + v + "'");
+      values.push_back(v);
+    }
+    return true;
+  };
+  CLI::Option* o = cl.app->add_option(flag, take, help);
+  o->type_name(placeholder)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->expected(1);
 }
 
 void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
@@ -388,6 +415,7 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   // pass itself, and would otherwise be paid again by every timing repeat.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  set_run_command(argc, argv);  // provenance of every output (experiments/provenance.h)
   try {
     for (int i = 1; i < argc; ++i) {
       if (std::string(argv[i]) == "--list-techniques") {

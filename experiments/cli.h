@@ -49,8 +49,14 @@ void add_double(CommandLine& cl, const std::string& flag, const std::string& pla
 // Comma-separated integers, each in [lo, hi]; no empty items.
 void add_int_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                   const std::string& help, std::vector<int>& value, int lo, int hi);
+// Comma-separated numbers, each in [lo, hi]; no empty items.
+void add_double_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                     const std::string& help, std::vector<double>& value, double lo, double hi);
 void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
               std::optional<vec3>& value);
+// A flag that may be given several times, each value appended in order.
+void add_text_repeated(CommandLine& cl, const std::string& flag, const std::string& placeholder,
+                       const std::string& help, std::vector<std::string>& values);
 // Any text (specs, paths, names; the caller validates what it means). `given` (optional) is set
 // when the flag appears, even with an empty value.
 void add_text(CommandLine& cl, const std::string& flag, const std::string& placeholder,

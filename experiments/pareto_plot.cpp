@@ -217,7 +217,8 @@ void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* 
 
 }  // namespace
 
-std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title) {
+std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title,
+                       const std::string& score_name) {
   // Series in order of first appearance, so colours do not depend on names.
   std::vector<std::string> series;
   std::vector<int> series_of(points.size());
@@ -260,6 +261,13 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
   add(s, "<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n", lx + 6.0,
       ly, kRingRadius);
   add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
+  const bool any_chosen = std::any_of(points.begin(), points.end(), [](const PlotPoint& p) { return p.chosen; });
+  if (any_chosen) {
+    lx += 112.0;
+    add(s, "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"none\" "
+           "stroke=\"#d00\" stroke-width=\"1.5\"/>\n", lx, ly - kRingRadius, 2.0 * kRingRadius, 2.0 * kRingRadius);
+    add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">best for a budget</text>\n", lx + 18.0, ly + 4.0);
+  }
 
   for (int panel = 0; panel < panels; ++panel) {
     Panel p;
@@ -276,7 +284,7 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
       score[i] = ok ? y : std::nan("");
     }
     score_range(score, p.y_lo, p.y_hi);
-    draw_axes(s, p, panel == 1 ? "fidelity" : "total score",
+    draw_axes(s, p, panel == 1 ? "fidelity" : score_name.c_str(),
               panel == 2 ? "map bytes touched (MB, log scale)" : "shadow time (ms, log scale)");
 
     // Front as a staircase in time order: best score reachable within a time budget.
@@ -308,6 +316,11 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
     for (size_t i : order)
       add(s, "<circle class=\"ring\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" "
              "stroke=\"#333\" stroke-width=\"1.2\"/>\n", p.px(cost[i]), p.py(score[i]), kRingRadius);
+    for (size_t i = 0; i < points.size(); ++i)
+      if (points[i].chosen && !std::isnan(cost[i]))
+        add(s, "<rect class=\"chosen\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" "
+               "fill=\"none\" stroke=\"#d00\" stroke-width=\"1.5\"/>\n", p.px(cost[i]) - kRingRadius,
+            p.py(score[i]) - kRingRadius, 2.0 * kRingRadius, 2.0 * kRingRadius);
     for (size_t i = 0; i < points.size(); ++i) {
       if (std::isnan(cost[i])) continue;
       add(s, "<text class=\"lbl\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"9\" fill=\"#222\">{}</text>\n",
@@ -319,9 +332,9 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
 }
 
 void write_pareto_svg(const std::string& path, const std::vector<PlotPoint>& points,
-                      const std::string& title) {
+                      const std::string& title, const std::string& score_name) {
   // write_text_file's error names the path and the OS's reason.
-  write_text_file(path, pareto_svg(points, title));
+  write_text_file(path, pareto_svg(points, title, score_name));
 }
 
 }  // namespace shadowlab

@@ -16,6 +16,7 @@ struct PlotPoint {
   double total = 0.0;    // total score, left panel's y
   double fidelity = 0.0; // fidelity score, middle panel's y
   double bytes = 0.0;    // map bytes touched (written + read, WorkCounts); <= 0: not in panel 3
+  bool chosen = false;   // marked with a red square (the tuner's budget winners)
 };
 
 // Smallest time the log axis shows, ms: times <= 0 (a cached reference) are clamped to it.
@@ -32,10 +33,12 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 // Each panel's front (cost = time, score = that panel's y, over all points) is drawn as a
 // staircase through its points in time order, and its points are ringed. Deterministic: every
 // number has fixed precision. Points with a non-finite time or y are left out of that panel.
-std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title);
+// score_name titles the total panels (the tuner plots its objective there).
+std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title,
+                       const std::string& score_name = "total score");
 
 // Writes pareto_svg(points, title) to path; throws InputError(path, "cannot write").
 void write_pareto_svg(const std::string& path, const std::vector<PlotPoint>& points,
-                      const std::string& title);
+                      const std::string& title, const std::string& score_name = "total score");
 
 }  // namespace shadowlab

@@ -15,49 +15,17 @@
 #include <nlohmann/json.hpp>
 
 #include "../test_paths.h"
+#include "experiments/run_process.h"
 #include "core/image_io.h"
 #include "experiments/contact_sheet.h"
 
 namespace shadowlab {
 namespace {
 
-struct ProcResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs build/experiments/<cmd> with args, capturing stdout and stderr.
-ProcResult run_env(const std::string& env, const std::string& cmd);
-ProcResult run(const std::string& cmd) { return run_env("", cmd); }
-
-// Runs experiments/<cmd> with `env` ("NAME=value …") in front.
-ProcResult run_env(const std::string& env, const std::string& cmd) {
-  // One stderr file per process: CTest runs the tests of this file in parallel processes.
-  const std::string err_path = test::binary_path("mains_stderr_" + std::to_string(getpid()) + ".txt");
-  const std::string full = env + (env.empty() ? "" : " ") + std::string(SHADOWLAB_BINARY_DIR) +
-                           "/experiments/" + cmd + " 2>" + err_path;
-  ProcResult r;
-  FILE* p = popen(full.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err_path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-void expect_clear_error(const std::string& cmd, const std::string& needle) {
-  const ProcResult r = run(cmd);
-  EXPECT_EQ(r.exit_code, 2) << cmd << "\nstderr: " << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << cmd << "\nstderr: " << r.err;
-  // One line: exactly one newline, at the end.
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << cmd << "\nstderr: " << r.err;
-}
+using test::ProcResult;
+using test::expect_clear_error;
+using test::run;
+using test::run_env;
 
 TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
   const std::string out = test::binary_path("bad_input_out");
@@ -180,7 +148,7 @@ TEST(Mains, CommandLineDocEqualsEveryHelp) {
     EXPECT_EQ(block, expected) << name << ": run bash docs/command_line.sh";
     ++programs;
   }
-  EXPECT_EQ(programs, 9);  // 8 experiments + the registry
+  EXPECT_EQ(programs, 11);  // 10 experiments + the registry
 }
 
 TEST(Mains, RenderOutDefaultsToOutRender) {

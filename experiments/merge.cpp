@@ -1,0 +1,46 @@
+// merge: combines the shard files of `tune --shard i/N` (tune_shardIofN.json) into the tables,
+// CSV, JSON and plot of one unsharded run, after checking that every evaluation is present
+// exactly once and that the shards share their configuration and provenance.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "experiments/cli.h"
+#include "experiments/provenance.h"
+#include "experiments/tune_report.h"
+
+using namespace shadowlab;
+
+int main(int argc, char** argv) {
+  return run_main(argc, argv, [](int argc, char** argv) {
+    CommandLine cl = make_command_line("merge", "SHARD.json... [--out DIR]");
+    std::string out = "out/merge";
+    add_text(cl, "--out", "DIR", "output folder (default out/merge)", out);
+    if (!parse_command_line(cl, argc, argv, 100000)) return 0;
+    const std::vector<std::string>& paths = cl.positional;
+    if (paths.empty()) throw InputError("merge", "give the shard files (tune_shardIofN.json)");
+    std::vector<nlohmann::json> shards;
+    for (const std::string& p : paths) {
+      std::ifstream in(p, std::ios::binary);
+      if (!in) throw InputError(p, "cannot open");
+      std::stringstream ss;
+      ss << in.rdbuf();
+      nlohmann::json j = nlohmann::json::parse(ss.str(), nullptr, false);
+      if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
+      shards.push_back(std::move(j));
+    }
+    const TuneResult r = merge_tune_shards(shards, paths);
+    TuneConfig c = tune_config_from_json(shards[0].at("config"), paths[0]);
+    c.shards = 1;
+    c.shard = 0;
+    nlohmann::json prov = shards[0].at("provenance");
+    prov["merged_from"] = paths;
+    prov["merged_by"] = provenance_json({}, 0, 0);
+    make_output_dir(out, "--out");
+    std::printf("%s", tune_table(r, c).c_str());
+    std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
+                write_tune_outputs(out, r, c, prov).c_str());
+    return 0;
+  });
+}

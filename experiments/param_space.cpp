@@ -1,0 +1,156 @@
+#include "experiments/param_space.h"
+
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/parse_number.h"
+
+namespace shadowlab {
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (;;) {
+    const size_t p = s.find(sep, start);
+    out.push_back(s.substr(start, p == std::string::npos ? std::string::npos : p - start));
+    if (p == std::string::npos) return out;
+    start = p + 1;
+  }
+}
+
+// A computed value as text: whole numbers exactly, others to 4 significant digits without an
+// exponent sign the spec parser would refuse ("1e+04").
+std::string value_text(double v) {
+  if (v == std::round(v) && std::fabs(v) < 1e15) return fmt::format("{:.0f}", v);
+  std::string t = fmt::format("{:.4g}", v);
+  if (t.find("e+") != std::string::npos) t = fmt::format("{:.1f}", v);
+  return t;
+}
+
+// n as a whole number of steps, or -1 when it is not one (relative tolerance 1e-9: decimal
+// steps such as 0.1 are not exact in binary).
+long whole_steps(double n) {
+  const double r = std::round(n);
+  if (std::fabs(n - r) > 1e-9 * std::max(1.0, std::fabs(n))) return -1;
+  return long(r);
+}
+
+}  // namespace
+
+size_t ParamSpace::size() const {
+  size_t n = 1;
+  for (const ParamDomain& d : keys) n *= d.values.size();
+  return n;
+}
+
+std::vector<std::string> parse_domain(const std::string& text, const std::string& flag) {
+  auto fail = [&](const std::string& why) -> InputError {
+    return InputError(flag, "'" + text + "': " + why);
+  };
+  auto number = [&](const std::string& s) {
+    double v = 0.0;
+    if (!parse_double(s, v)) throw fail("'" + s + "' is not a number");
+    return v;
+  };
+  std::vector<std::string> values;
+  const size_t dots = text.find("..");
+  if (dots == std::string::npos) {
+    for (const std::string& v : split(text, '|')) {
+      if (v.empty()) throw fail("empty value in a list");
+      values.push_back(v);
+    }
+  } else {
+    const size_t slash = text.find('/', dots);
+    const std::string a_text = text.substr(0, dots);
+    const std::string b_text = text.substr(dots + 2, slash == std::string::npos ? std::string::npos : slash - dots - 2);
+    const double a = number(a_text), b = number(b_text);
+    if (a > b) throw fail("empty range (" + a_text + " > " + b_text + ")");
+    std::string step = slash == std::string::npos ? "" : text.substr(slash + 1);
+    std::vector<double> v;
+    auto check_count = [&](double n) {
+      if (!(n < double(kMaxDomainValues))) throw fail("more than " + std::to_string(kMaxDomainValues) + " values");
+    };
+    if (step.empty()) {
+      long ia = 0, ib = 0;
+      if (slash != std::string::npos) throw fail("empty step after '/'");
+      if (!parse_long(a_text, ia) || !parse_long(b_text, ib))
+        throw fail("a range without a step needs whole-number ends (give /STEP)");
+      check_count(double(ib) - double(ia));
+      for (long i = ia; i <= ib; ++i) v.push_back(double(i));
+    } else if (step[0] == 'x') {
+      const double f = number(step.substr(1));
+      if (!(f > 1.0)) throw fail("factor must be > 1");
+      if (!(a > 0.0)) throw fail("a geometric range needs A > 0");
+      const double n = std::log(b / a) / std::log(f);
+      check_count(n);
+      const long k = whole_steps(n);
+      if (k < 0) throw fail("x" + step.substr(1) + " steps from " + a_text + " never reach " + b_text);
+      for (long i = 0; i < k; ++i) v.push_back(a * std::pow(f, double(i)));
+      v.push_back(b);
+    } else if (step.rfind("lin", 0) == 0 || step.rfind("log", 0) == 0) {
+      const bool log = step[1] == 'o';
+      long n = 0;
+      if (!parse_long(step.substr(3), n) || n < 2) throw fail("'" + step + "': need " + step.substr(0, 3) + "N with N >= 2");
+      check_count(double(n));
+      if (log && !(a > 0.0)) throw fail("a log range needs A > 0");
+      for (long i = 0; i + 1 < n; ++i) {
+        const double t = double(i) / double(n - 1);
+        v.push_back(log ? a * std::pow(b / a, t) : a + (b - a) * t);
+      }
+      v.push_back(b);
+    } else {
+      const double s = number(step);
+      if (!(s > 0.0)) throw fail("step must be > 0");
+      const double n = (b - a) / s;
+      check_count(n);
+      const long k = whole_steps(n);
+      if (k < 0) throw fail("steps of " + step + " from " + a_text + " never reach " + b_text);
+      for (long i = 0; i < k; ++i) v.push_back(a + double(i) * s);
+      v.push_back(b);
+    }
+    for (double x : v) values.push_back(value_text(x));
+  }
+  std::set<std::string> seen;
+  for (const std::string& s : values)
+    if (!seen.insert(s).second) throw fail("value " + s + " occurs twice");
+  return values;
+}
+
+ParamSpace parse_param_space(const std::string& text, const std::string& flag) {
+  ParamSpace s;
+  s.text = text;
+  const size_t colon = text.find(':');
+  s.technique = text.substr(0, colon);
+  if (s.technique.empty()) throw InputError(flag, "'" + text + "': no technique name");
+  if (colon == std::string::npos) return s;
+  for (const std::string& item : split(text.substr(colon + 1), ',')) {
+    const size_t eq = item.find('=');
+    if (item.empty() || eq == std::string::npos || eq == 0)
+      throw InputError(flag, "'" + text + "': expected key=domain, got '" + item + "'");
+    ParamDomain d;
+    d.key = item.substr(0, eq);
+    for (const ParamDomain& other : s.keys)
+      if (other.key == d.key) throw InputError(flag, "'" + text + "': key " + d.key + " given twice");
+    d.values = parse_domain(item.substr(eq + 1), flag + " '" + text + "' " + d.key);
+    s.keys.push_back(std::move(d));
+  }
+  return s;
+}
+
+std::string space_point(const ParamSpace& space, size_t i) {
+  std::vector<std::string> parts(space.keys.size());
+  for (size_t k = space.keys.size(); k-- > 0;) {
+    const ParamDomain& d = space.keys[k];
+    parts[k] = d.key + "=" + d.values[i % d.values.size()];
+    i /= d.values.size();
+  }
+  std::string out = space.technique;
+  for (size_t k = 0; k < parts.size(); ++k) out += (k == 0 ? ":" : ",") + parts[k];
+  return out;
+}
+
+}  // namespace shadowlab
