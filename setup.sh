@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
 # Installs shadowlab's Debian 12 build dependencies when any is missing, then configures and
 # builds into ./build (Release). Idempotent: with everything installed it only runs an
-# incremental build. Usage: bash setup.sh
+# incremental build. Usage: bash setup.sh [--tests]
+# --tests also installs what only the tests need: snakemake (about 145 Python packages, for the
+# workflow test of workflows/), so the main command's first run stays lean.
 set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(cmake g++ make pkg-config libembree-dev libtbb-dev libglm-dev libopenexr-dev
           libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev
           libcli11-dev libfmt-dev libtinygltf-dev)
+if [ "${1:-}" = "--tests" ]; then
+  packages+=(snakemake)
+elif [ $# -gt 0 ]; then
+  echo "setup.sh: unknown argument '$1' (usage: bash setup.sh [--tests])" >&2
+  exit 2
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
@@ -50,9 +51,13 @@ void require_readable(const std::string& path) {
 }
 
 // Writes one channel `name` of type `type` from a width × height plane of T.
+void add_attributes(Imf::Header& header, const ExrAttributes& attributes) {
+  for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
+}
+
 template <class T>
 void write_exr_channel(const std::string& path, const Image<T>& img, const char* name,
-                       Imf::PixelType type) {
+                       Imf::PixelType type, const ExrAttributes& attributes) {
   SL_CHECK_EQ(img.channels, 1);
   SL_CHECK_EQ(img.data.size(), img.pixel_count());
   if (img.empty())
@@ -62,6 +67,7 @@ void write_exr_channel(const std::string& path, const Image<T>& img, const char*
     Imf::Header header(img.width, img.height);
     header.compression() = Imf::ZIP_COMPRESSION;  // lossless: round trips are bit-exact
     header.channels().insert(name, Imf::Channel(type));
+    add_attributes(header, attributes);
     OutputFile out(path);  // a failed write leaves no truncated file under `path`
     {
       Imf::OutputFile file(out.temp_path().c_str(), header);
@@ -246,23 +252,24 @@ void write_png(const std::string& path, int w, int h, int comp, const std::vecto
 
 }  // namespace
 
-void write_exr_mask(const std::string& path, const ImageF& mask) {
-  write_exr_channel(path, mask, "Y", Imf::FLOAT);
+void write_exr_mask(const std::string& path, const ImageF& mask, const ExrAttributes& attributes) {
+  write_exr_channel(path, mask, "Y", Imf::FLOAT, attributes);
 }
 
 ImageF read_exr_mask(const std::string& path) {
   return read_exr_channel<float>(path, "Y", Imf::FLOAT);
 }
 
-void write_exr_texels(const std::string& path, const ImageU32& texels) {
-  write_exr_channel(path, texels, "texel", Imf::UINT);
+void write_exr_texels(const std::string& path, const ImageU32& texels,
+                      const ExrAttributes& attributes) {
+  write_exr_channel(path, texels, "texel", Imf::UINT, attributes);
 }
 
 ImageU32 read_exr_texels(const std::string& path) {
   return read_exr_channel<uint32_t>(path, "texel", Imf::UINT);
 }
 
-void write_exr_rgb(const std::string& path, const ImageF& rgb) {
+void write_exr_rgb(const std::string& path, const ImageF& rgb, const ExrAttributes& attributes) {
   SL_CHECK_EQ(rgb.channels, 3);
   SL_CHECK_EQ(rgb.data.size(), rgb.pixel_count() * 3);
   if (rgb.empty())
@@ -271,6 +278,8 @@ void write_exr_rgb(const std::string& path, const ImageF& rgb) {
   try {
     Imf::Header header(rgb.width, rgb.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    add_attributes(header, attributes);
+    add_attributes(header, attributes);
     const char* names[3] = {"R", "G", "B"};
     Imf::FrameBuffer fb;
     for (int c = 0; c < 3; ++c) {
@@ -350,6 +359,20 @@ std::pair<int, int> exr_image_size(const std::string& path) {
     const Imath::Box2i dw = peek_exr_header(path).dataWindow();
     return {int(std::min<long long>((long long)dw.max.x - dw.min.x + 1, INT_MAX)),
             int(std::min<long long>((long long)dw.max.y - dw.min.y + 1, INT_MAX))};
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot read EXR: ") + e.what());
+  }
+}
+
+ExrAttributes read_exr_attributes(const std::string& path) {
+  require_readable(path);
+  try {
+    const Imf::Header header = peek_exr_header(path);
+    ExrAttributes out;
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        out.emplace_back(it.name(), a->value());
+    return out;
   } catch (const std::exception& e) {
     throw InputError(path, std::string("cannot read EXR: ") + e.what());
   }

@@ -5,19 +5,27 @@
 // Every failure throws InputError naming the file and the reason.
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/image.h"
 
 namespace shadowlab {
 
-void write_exr_mask(const std::string& path, const ImageF& mask);
+// Text attributes written into an EXR header (name → value; provenance, README "Provenance"),
+// readable with `exrheader`.
+using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
+
+void write_exr_mask(const std::string& path, const ImageF& mask, const ExrAttributes& attributes = {});
 ImageF read_exr_mask(const std::string& path);
-void write_exr_texels(const std::string& path, const ImageU32& texels);
+void write_exr_texels(const std::string& path, const ImageU32& texels,
+                      const ExrAttributes& attributes = {});
 ImageU32 read_exr_texels(const std::string& path);
 // Linear RGB EXR (float32 channels R, G, B) of a 3-channel image (shaded projector renders).
-void write_exr_rgb(const std::string& path, const ImageF& rgb);
+void write_exr_rgb(const std::string& path, const ImageF& rgb, const ExrAttributes& attributes = {});
 // Width and height of an EXR from its header (the data window), without reading pixels.
 std::pair<int, int> exr_image_size(const std::string& path);
+// The text attributes of an EXR header, in header order (the write functions' `attributes`).
+ExrAttributes read_exr_attributes(const std::string& path);
 // Reads an EXR as linear RGB (3 channels): R, G, B if present (any pixel type, converted to
 // float), else a grey Y channel copied to all three. Throws InputError naming the file.
 ImageF read_exr_rgb(const std::string& path);

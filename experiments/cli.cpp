@@ -107,6 +107,9 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+// The programs --from repeats: their JSON outputs record the command (experiments/provenance.h).
+const std::string kRepeatable[] = {"render", "resolution_sweep", "tune"};
+
 CommandLine make_command_line(const std::string& program, const std::string& synopsis) {
   CommandLine cl;
   cl.program = program;
@@ -118,6 +121,11 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
   const std::string version_help = "print the program, shadowlab's commit and the compiler, then exit";
   app.add_flag("--list-techniques", list_help);
   app.add_flag("--version", version_help);
+  // run_main replaces --from FILE by the recorded arguments before parsing, for the programs
+  // whose outputs record their command (kRepeatable).
+  if (std::find(std::begin(kRepeatable), std::end(kRepeatable), program) != std::end(kRepeatable))
+    app.add_option("--from", "repeat the run recorded in FILE's provenance (a timing.json, sweep.json or tune.json this program wrote); only --out and --threads may be given beside it")
+        ->type_name("FILE.json");
   // Unknown flags and positional arguments are collected and reported by parse_command_line
   // in shadowlab's one-line form.
   app.allow_extras(true);
@@ -405,6 +413,7 @@ Scene scene_from_options(const CommonOptions& o) {
   }
   apply_projector_options(o, scene);
   validate_scene(scene, is_file ? name : "--scene " + name);
+  check_recorded_scene(scene);  // --from: the scene must be the recorded one
   return scene;
 }
 
@@ -416,6 +425,31 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   set_run_command(argc, argv);  // provenance of every output (experiments/provenance.h)
+  // --from FILE: the recorded run's arguments (provenance.h arguments_from_run) instead.
+  std::vector<std::string> from_args;
+  std::vector<char*> from_argv;
+  try {
+    const bool repeatable =
+        std::find(std::begin(kRepeatable), std::end(kRepeatable), prog) != std::end(kRepeatable);
+    for (int i = 1; i < argc && repeatable; ++i)
+      if (std::string(argv[i]) == "--from") {
+        if (i + 1 >= argc) throw InputError("--from", "needs a file (a timing.json, sweep.json or tune.json)");
+        std::vector<std::string> rest;
+        for (int k = 1; k < argc; ++k)
+          if (k != i && k != i + 1) rest.push_back(argv[k]);
+        from_args = arguments_from_run(prog, argv[i + 1], rest);
+        from_args.insert(from_args.begin(), argv[0]);
+        for (std::string& a : from_args) from_argv.push_back(a.data());
+        from_argv.push_back(nullptr);
+        argc = int(from_args.size());
+        argv = from_argv.data();
+        set_run_command(argc, argv);
+        break;
+      }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
+    return 2;
+  }
   try {
     for (int i = 1; i < argc; ++i) {
       if (std::string(argv[i]) == "--list-techniques") {

@@ -10,20 +10,25 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_file.h"
+#include "experiments/provenance.h"
 
 namespace shadowlab {
 
 void write_result_files(const std::string& dir, const std::string& prefix, const ShadowResult& r,
-                        const std::string& technique, double camera_ms, const ImageF* shaded) {
+                        const std::string& technique, double camera_ms,
+                        const nlohmann::json& provenance, const ImageF* shaded) {
   const std::string base = dir + "/" + prefix;
+  ExrAttributes attributes = provenance_attributes(provenance);
+  attributes.emplace_back("shadowlab:technique", technique);
+  write_exr_mask(base + "mask.exr", r.mask, attributes);
+  write_png_grey(base + "mask.png", r.mask);
+  if (!r.texels.empty()) write_exr_texels(base + "texel.exr", r.texels, attributes);
   if (shaded) {
-    write_exr_rgb(base + "shaded.exr", *shaded);
+    write_exr_rgb(base + "shaded.exr", *shaded, attributes);
     write_png_rgb(base + "shaded.png", *shaded);
   }
-  write_exr_mask(base + "mask.exr", r.mask);
-  write_png_grey(base + "mask.png", r.mask);
-  if (!r.texels.empty()) write_exr_texels(base + "texel.exr", r.texels);
   nlohmann::json j = timing_json(r);
+  j["provenance"] = provenance;
   j["technique"] = technique;
   j["camera_ms"] = camera_ms;
   j["faces_needed"] = r.faces_needed;

@@ -10,10 +10,11 @@
 namespace shadowlab {
 
 // Writes into dir with the given file-name prefix ("" → mask.exr, "csm_512_" → csm_512_mask.exr);
-// with `shaded` also shaded.exr (linear RGB) and shaded.png (sRGB).
+// with `shaded` also shaded.exr (linear RGB) and shaded.png (sRGB). `provenance`
+// (experiments/provenance.h) goes into timing.json and, as text attributes, every EXR header.
 void write_result_files(const std::string& dir, const std::string& prefix, const ShadowResult& r,
                         const std::string& technique, double camera_ms,
-                        const ImageF* shaded = nullptr);
+                        const nlohmann::json& provenance, const ImageF* shaded = nullptr);
 
 // The per-phase times and work counts of a result, as written in timing.json and sweep.json:
 // {"faces_ms", "render_ms", "filter_ms", "map_ms", "lookup_ms", "shadow_ms", "work": {...}}.

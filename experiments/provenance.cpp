@@ -1,10 +1,14 @@
 #include "experiments/provenance.h"
 
+#include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include <fmt/format.h>
 
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
 
@@ -22,6 +26,11 @@ std::string& program_storage() {
 std::vector<std::string>& argument_storage() {
   static std::vector<std::string> a;
   return a;
+}
+
+std::map<std::string, std::string>& recorded_hashes() {
+  static std::map<std::string, std::string> m;
+  return m;
 }
 
 }  // namespace
@@ -91,6 +100,65 @@ nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp,
   // Every random choice is a hash of (pixel, sample, scene seed) (core/rng.h): no run seed.
   j["seeds"] = "per pixel and sample from the scene seed (core/rng.h rng_hash); no per-run or per-thread seed";
   return j;
+}
+
+std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
+                                            const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open (--from)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const nlohmann::json j = nlohmann::json::parse(ss.str(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("provenance") || !j["provenance"].is_object())
+    throw InputError(path, "has no provenance to repeat (a timing.json, sweep.json or tune.json of shadowlab 0.2 or later)");
+  const nlohmann::json& p = j["provenance"];
+  if (!p.contains("program") || !p["program"].is_string() || !p.contains("command") || !p["command"].is_array())
+    throw InputError(path, "its provenance has no program and command");
+  if (p["program"].get<std::string>() != program)
+    throw InputError("--from", path + " records a run of " + p["program"].get<std::string>() + ", not " + program);
+  // Only --out and --threads may change: anything else would not repeat the run.
+  std::map<std::string, std::string> over;
+  for (size_t i = 0; i < overrides.size(); ++i) {
+    const std::string& f = overrides[i];
+    if ((f != "--out" && f != "--threads") || i + 1 >= overrides.size())
+      throw InputError("--from", "only --out DIR and --threads N may be given with --from, got '" + f + "'");
+    over[f] = overrides[++i];
+  }
+  std::vector<std::string> args;
+  const nlohmann::json& cmd = p["command"];
+  for (size_t i = 0; i < cmd.size(); ++i) {
+    if (!cmd[i].is_string()) throw InputError(path, "its provenance command is not a list of strings");
+    const std::string a = cmd[i].get<std::string>();
+    if (over.count(a) && i + 1 < cmd.size()) {
+      ++i;  // the recorded value is replaced below
+      continue;
+    }
+    args.push_back(a);
+  }
+  for (const auto& [f, v] : over) {
+    args.push_back(f);
+    args.push_back(v);
+  }
+  recorded_hashes().clear();
+  if (p.contains("scenes") && p["scenes"].is_array())
+    for (const nlohmann::json& sc : p["scenes"])
+      if (sc.is_object() && sc.contains("name") && sc.contains("hash") && sc["name"].is_string() && sc["hash"].is_string())
+        recorded_hashes()[sc["name"].get<std::string>()] = sc["hash"].get<std::string>();
+  if (p.contains("commit") && p["commit"].is_string() && p["commit"].get<std::string>() != build_commit())
+    std::fprintf(stderr, "%s: note: %s was recorded with commit %s, this build is %s: scores may differ\n",
+                 program.c_str(), path.c_str(), p["commit"].get<std::string>().c_str(), build_commit());
+  return args;
+}
+
+void check_recorded_scene(const Scene& scene) {
+  const auto& m = recorded_hashes();
+  if (m.empty()) return;
+  const auto it = m.find(scene.name);
+  if (it == m.end()) throw InputError("--from", "the recorded run has no scene '" + scene.name + "'");
+  const std::string now = scene_hash(scene);
+  if (now != it->second)
+    throw InputError("--from", "scene '" + scene.name + "' is not the recorded one (hash " + it->second +
+                                   ", now " + now + "): its files changed");
 }
 
 std::vector<std::pair<std::string, std::string>> provenance_attributes(const nlohmann::json& p) {

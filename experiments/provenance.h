@@ -27,8 +27,20 @@ std::string utc_now();
 
 // {"program", "version", "commit", "compiler", "cpu", "date", "threads", "command": [args],
 //  "scenes": [{"name", "hash" (core/scene_hash.h), "width", "height", "light_position",
-//  "light_radius", "seed"}], "spp", "repeats", "seeds"}. spp 0: no reference in this output.
+//  "light_radius", "seed"}], "spp", "repeats", "seeds"}. spp: the reference's samples per pixel, 0 when the output
+// compares with no reference (render: the technique's spec says all).
 nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp, int repeats);
+// --from FILE (run_main): the arguments of the run recorded in FILE's "provenance" (a JSON file
+// this program wrote: timing.json, sweep.json, tune.json), with the recorded --out and
+// --threads replaced when `overrides` gives them; any other flag beside --from is an
+// InputError. Also arms check_recorded_scene: until the process ends, every scene built must
+// have the recorded content hash. A different commit is reported on stderr (scores may differ).
+std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
+                                            const std::vector<std::string>& overrides);
+// Throws InputError("--from", …) when a run is being repeated and `scene` is not the recorded
+// scene of that name (its file changed, or the build makes it differently).
+void check_recorded_scene(const Scene& scene);
+
 // The same as flat text pairs, for EXR header attributes ("shadowlab:commit", …).
 std::vector<std::pair<std::string, std::string>> provenance_attributes(const nlohmann::json& p);
 

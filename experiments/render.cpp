@@ -7,6 +7,7 @@
 #include "core/image_io.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
+#include "experiments/provenance.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
 #include "techniques/scene_shading.h"
@@ -48,12 +49,8 @@ int main(int argc, char** argv) {
     opt.cache_dir = no_cache ? "" : default_cache_dir();
     opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
-    write_result_files(out, "", r, spec.text, camera_ms);
-    {
-      const ImageF shaded = shade_scene(scene, g, r.mask, shading.ambient);
-      write_exr_rgb(out + "/shaded.exr", shaded);
-      write_png_rgb(out + "/shaded.png", shaded);
-    }
+    const ImageF shaded = shade_scene(scene, g, r.mask, shading.ambient);
+    write_result_files(out, "", r, spec.text, camera_ms, provenance_json({&scene}, 0, repeats), &shaded);
     std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f = faces %.3f + render %.3f + filter %.3f;"
                 " lookup %.3f), camera pass %.3f ms; %s\n",
                 spec.text.c_str(), scene.name.c_str(), g.width, g.height, r.shadow_ms(), r.map_ms,

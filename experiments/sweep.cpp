@@ -17,6 +17,7 @@
 #include "experiments/contact_sheet.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
+#include "experiments/provenance.h"
 #include "techniques/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 
@@ -80,6 +81,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   const size_t total = 1 + specs.size() * config.resolutions.size();
   size_t done = 0;
 
+  out.provenance = provenance_json({&scene}, config.spp, config.repeats);
   GBuffer g;
   out.camera_ms = median_ms(config.repeats, [&] { render_gbuffer(scene, g); });
   MetricWeights weights;
@@ -107,7 +109,8 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
     const ImageF shaded = shade_scene(scene, g, row.result.mask, config.ambient);
     row.shaded_cell = box_downscale(shaded, cell_factor);
     if (!config.out_dir.empty())
-      write_result_files(config.out_dir, prefix, row.result, spec_text, out.camera_ms, &shaded);
+      write_result_files(config.out_dir, prefix, row.result, spec_text, out.camera_ms, out.provenance,
+                         &shaded);
   };
   shade(out.reference, "reference_", ref_spec.text);
   progress_line(config, ++done, total, "reference", start);
@@ -204,6 +207,8 @@ void write_sweep_csv(const std::string& path, const SweepResult& r) {
 
 void write_sweep_csv(const std::string& path, const std::vector<const SweepResult*>& results) {
   std::ostringstream f;
+  // One "# provenance {...}" line per scene before the header (pandas: comment='#').
+  for (const SweepResult* r : results) f << "# provenance " << r->provenance.dump() << "\n";
   f << "scene,label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
        "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
   const SweepResult* current = nullptr;
@@ -271,6 +276,8 @@ void write_sweep_json(const std::string& path, const SweepResult& r) {
 
 nlohmann::json sweep_json(const SweepResult& r) {
   nlohmann::json j;
+  j["kind"] = "sweep";
+  j["provenance"] = r.provenance;
   j["scene"] = r.scene;
   j["width"] = r.width;
   j["height"] = r.height;

@@ -44,6 +44,7 @@ struct SweepResult {
   double camera_ms = 0.0;       // unshadowed camera pass, median
   SweepRow reference;
   std::vector<SweepRow> rows;
+  nlohmann::json provenance;    // experiments/provenance.h; in every file the sweep writes
 };
 
 SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config);
