@@ -482,6 +482,18 @@ uint64_t max_memory_bytes(const CommonOptions& o) {
   return o.max_memory_gb ? uint64_t(*o.max_memory_gb * 1e9) : 0;
 }
 
+void parse_shard(const std::string& text, int& shard, int& shards) {
+  const size_t slash = text.find('/');
+  long i = 0, n = 0;
+  if (slash == std::string::npos || !shadowlab::parse_long(text.substr(0, slash), i) ||
+      !shadowlab::parse_long(text.substr(slash + 1), n))
+    throw InputError("--shard", "expected i/N, got '" + text + "'");
+  if (n < 1 || n > 100000 || i < 0 || i >= n)
+    throw InputError("--shard", "expected 0 <= i < N <= 100000, got '" + text + "'");
+  shard = int(i);
+  shards = int(n);
+}
+
 void make_output_dir(const std::string& dir, const std::string& flag) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -106,6 +106,9 @@ uint64_t max_memory_bytes(const CommonOptions& o);
 // other exception → exit code 1. --list-techniques and --version anywhere print and exit 0.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);
 
+// --shard i/N: 0 <= i < N <= 100000, else InputError("--shard", …).
+void parse_shard(const std::string& text, int& shard, int& shards);
+
 // Creates the folder (and parents) or throws InputError(flag, reason).
 void make_output_dir(const std::string& dir, const std::string& flag);
 

@@ -1,6 +1,7 @@
-// merge: combines the shard files of `tune --shard i/N` (tune_shardIofN.json) into the tables,
-// CSV, JSON and plot of one unsharded run, after checking that every evaluation is present
-// exactly once and that the shards share their configuration and provenance.
+// merge: combines the shard files of `tune --shard i/N` (tune_shardIofN.json) or
+// `resolution_sweep --shard i/N` (sweep_shardIofN.json) into the tables, CSV, JSON and plot of
+// one unsharded run, after checking that every evaluation or row is present exactly once and
+// that the shards share their configuration and provenance.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -8,13 +9,14 @@
 #include "core/error.h"
 #include "experiments/cli.h"
 #include "experiments/provenance.h"
+#include "experiments/sweep.h"
 #include "experiments/tune_report.h"
 
 using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
-    CommandLine cl = make_command_line("merge", "SHARD.json... [--out DIR]");
+    CommandLine cl = make_command_line("merge", "SHARD.json... [--out DIR]  (tune_shardIofN.json or sweep_shardIofN.json files)");
     std::string out = "out/merge";
     add_text(cl, "--out", "DIR", "output folder (default out/merge)", out);
     if (!parse_command_line(cl, argc, argv, 100000)) return 0;
@@ -30,6 +32,18 @@ int main(int argc, char** argv) {
       if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
       shards.push_back(std::move(j));
     }
+    make_output_dir(out, "--out");
+    if (shards[0].contains("kind") && shards[0]["kind"] == "sweep") {
+      const SweepResult r = merge_sweep_shards(shards, paths);
+      std::printf("%s", sweep_table(r).c_str());
+      write_sweep_csv(out + "/sweep.csv", r);
+      write_sweep_json(out + "/sweep.json", r);
+      write_pareto_svg(out + "/plot.svg", sweep_plot_points(r),
+                       "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
+                           std::to_string(r.height) + " (merged from " + std::to_string(shards.size()) + " shards)");
+      std::printf("merged %zu shards; wrote %s/sweep.csv, sweep.json, plot.svg\n", shards.size(), out.c_str());
+      return 0;
+    }
     const TuneResult r = merge_tune_shards(shards, paths);
     TuneConfig c = tune_config_from_json(shards[0].at("config"), paths[0]);
     c.shards = 1;
@@ -37,7 +51,6 @@ int main(int argc, char** argv) {
     nlohmann::json prov = shards[0].at("provenance");
     prov["merged_from"] = paths;
     prov["merged_by"] = provenance_json({}, 0, 0);
-    make_output_dir(out, "--out");
     std::printf("%s", tune_table(r, c).c_str());
     std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
                 write_tune_outputs(out, r, c, prov).c_str());

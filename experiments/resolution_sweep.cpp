@@ -39,12 +39,16 @@ int main(int argc, char** argv) {
     add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
     std::string suite;
     add_text(cl, "--suite", "NAME", "run every scene of a suite (hard: grazing, contact, depth_range, cluttered; all: those + default, foliage, bunny) instead of --scene: a table per scene in --out/SCENE/, then each setting's fidelity and total per scene with the mean and the worst (default: none)", suite);
+    std::string shard;
+    add_text(cl, "--shard", "i/N", "run only the rows (technique x resolution, in order) with index mod N == i, writing sweep_shardIofN.csv/.json; combine with build/experiments/merge (default 0/1)", shard);
     if (!parse_command_line(cl, argc, argv)) return 0;
+    if (!shard.empty()) parse_shard(shard, c.shard, c.shards);
     std::vector<std::string> suite_scenes;
     if (!suite.empty()) {
       suite_scenes = scene_suite(suite, "--suite");
       if (common.scene != "default") throw InputError("--suite", "conflicts with --scene");
       if (!plot.empty() || plot_given) throw InputError("--plot", "is per scene; not with --suite");
+      if (c.shards > 1) throw InputError("--shard", "not with --suite (shard each scene's sweep instead)");
     }
     if (sheet != "mask" && sheet != "shaded")
       throw InputError("--sheet", "expected mask or shaded, got '" + sheet + "'");
@@ -110,7 +114,16 @@ int main(int argc, char** argv) {
       throw InputError("--plot", "'" + plot + "': folder does not exist");
     if (!plot.empty() && std::filesystem::is_directory(plot))
       throw InputError("--plot", "'" + plot + "' is a folder; give a file name such as plot.svg");
+    if (c.shards > 1 && !plot.empty()) throw InputError("--plot", "not with --shard: merge draws the plot");
     const SweepResult r = run_resolution_sweep(scene, c);
+    if (c.shards > 1) {
+      const std::string stem = c.out_dir + "/sweep_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
+      write_sweep_csv(stem + ".csv", r);
+      write_sweep_json(stem + ".json", r);
+      std::printf("shard %d/%d: %zu of %zu rows; wrote %s.csv, .json and the rows' masks and shaded images\n",
+                  c.shard, c.shards, r.rows.size(), r.rows_total, stem.c_str());
+      return 0;
+    }
     std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
                 r.scene.c_str(), r.width, r.height, scene.light.radius, c.spp, thread_count(),
                 r.camera_ms);

@@ -1,6 +1,7 @@
 #include "experiments/sweep.h"
 
 #include <algorithm>
+#include <set>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -115,14 +116,21 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   shade(out.reference, "reference_", ref_spec.text);
   progress_line(config, ++done, total, "reference", start);
 
+  out.rows_total = specs.size() * config.resolutions.size();
+  out.shard = config.shard;
+  out.shards = config.shards;
+  size_t index = 0;
   for (const TechniqueSpec& base : specs)
     for (int res : config.resolutions) {
+      const size_t row_index = index++;
+      if (row_index % size_t(config.shards) != size_t(config.shard)) continue;
       TechniqueSpec spec = base;
       spec.params["res"] = std::to_string(res);
       spec.text = spec_text(spec);
       SweepRow row;
       row.spec = spec.text;
       row.res = res;
+      row.index = row_index;
       row.technique = base.name;
       row.label = upper(base.text) + " " + std::to_string(res);
       progress_line(config, done, total, row.label, start);
@@ -182,6 +190,8 @@ nlohmann::json row_json(const SweepRow& row) {
   const MetricReport& m = row.report;
   nlohmann::json j;
   j["label"] = row.label;
+  j["index"] = row.index;
+  j["technique"] = row.technique;
   j["spec"] = row.spec;
   j["res"] = row.res;
   for (const auto& [k, v] : std::initializer_list<std::pair<const char*, double>>{
@@ -278,6 +288,9 @@ nlohmann::json sweep_json(const SweepResult& r) {
   nlohmann::json j;
   j["kind"] = "sweep";
   j["provenance"] = r.provenance;
+  j["rows_total"] = r.rows_total;
+  j["shard"] = r.shard;
+  j["shards"] = r.shards;
   j["scene"] = r.scene;
   j["width"] = r.width;
   j["height"] = r.height;
@@ -319,6 +332,122 @@ ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
   }
   for (int res : config.resolutions) col_labels.push_back(std::to_string(res));
   return contact_sheet(row_labels, col_labels, cells, cell(r.reference), {}, &captions);
+}
+
+namespace {
+
+SweepRow row_from_json(const nlohmann::json& j) {
+  SweepRow row;
+  row.label = j.at("label").get<std::string>();
+  row.index = j.at("index").get<size_t>();
+  row.technique = j.at("technique").get<std::string>();
+  row.spec = j.at("spec").get<std::string>();
+  row.res = j.at("res").get<int>();
+  MetricReport& m = row.report;
+  for (const auto& [k, v] : std::initializer_list<std::pair<const char*, double MetricReport::*>>{
+           {"c10", &MetricReport::c10}, {"c50", &MetricReport::c50}, {"c90", &MetricReport::c90},
+           {"dark", &MetricReport::dark}, {"lit", &MetricReport::lit}, {"acne", &MetricReport::acne},
+           {"noise", &MetricReport::noise}, {"detail", &MetricReport::detail},
+           {"fidelity", &MetricReport::fidelity}, {"aesthetics", &MetricReport::aesthetics},
+           {"ssim", &MetricReport::ssim}, {"rmse", &MetricReport::rmse}, {"psnr", &MetricReport::psnr},
+           {"total", &MetricReport::total}})
+    m.*v = j.at(k).get<double>();
+  m.has_performance = j.contains("performance");
+  if (m.has_performance) m.performance = j.at("performance").get<double>();
+  ShadowResult& r = row.result;
+  r.from_cache = j.at("from_cache").get<bool>();
+  auto ms = [&](const char* k) { return j.at(k).is_null() ? 0.0 : j.at(k).get<double>(); };
+  r.faces_ms = ms("faces_ms");
+  r.render_ms = ms("render_ms");
+  r.filter_ms = ms("filter_ms");
+  r.map_ms = ms("map_ms");
+  r.lookup_ms = ms("lookup_ms");
+  const nlohmann::json& w = j.at("work");
+  r.work.triangles_submitted = w.at("triangles_submitted").get<uint64_t>();
+  r.work.triangles_binned = w.at("triangles_binned").get<uint64_t>();
+  r.work.texels_rendered = w.at("texels_rendered").get<uint64_t>();
+  r.work.texels_filtered = w.at("texels_filtered").get<uint64_t>();
+  r.work.pixels_looked_up = w.at("pixels_looked_up").get<uint64_t>();
+  r.work.taps = w.at("taps").get<uint64_t>();
+  r.work.bytes_written = w.at("bytes_written").get<uint64_t>();
+  r.work.bytes_read = w.at("bytes_read").get<uint64_t>();
+  r.faces_needed = j.at("faces_needed").get<int>();
+  r.faces_rendered = j.at("faces_rendered").get<int>();
+  r.notes = j.at("notes").get<std::string>();
+  return row;
+}
+
+}  // namespace
+
+SweepResult sweep_from_json(const nlohmann::json& j, const std::string& where) {
+  try {
+    if (!j.contains("kind") || j.at("kind") != "sweep") throw InputError(where, "not a resolution_sweep result");
+    SweepResult r;
+    r.scene = j.at("scene").get<std::string>();
+    r.width = j.at("width").get<int>();
+    r.height = j.at("height").get<int>();
+    r.camera_ms = j.at("camera_ms").get<double>();
+    r.provenance = j.at("provenance");
+    r.rows_total = j.at("rows_total").get<size_t>();
+    r.shard = j.at("shard").get<int>();
+    r.shards = j.at("shards").get<int>();
+    r.reference = row_from_json(j.at("reference"));
+    for (const nlohmann::json& row : j.at("rows")) r.rows.push_back(row_from_json(row));
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where, std::string("malformed resolution_sweep result: ") + e.what());
+  }
+}
+
+SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
+                               const std::vector<std::string>& paths) {
+  SweepResult merged = sweep_from_json(shards.at(0), paths.at(0));
+  merged.rows.clear();
+  if (int(shards.size()) != merged.shards)
+    throw InputError(paths[0], fmt::format("is one of {} shards, {} files given", merged.shards, shards.size()));
+  // What determines the scores must agree: the run's command but --shard and --out, the build,
+  // the scenes. Machine, date and threads may differ.
+  auto key = [](const nlohmann::json& p) {
+    nlohmann::json k = p;
+    for (const char* f : {"date", "cpu", "threads"}) k.erase(f);
+    std::vector<std::string> cmd;
+    const std::vector<std::string> all = p.at("command").get<std::vector<std::string>>();
+    for (size_t i = 0; i < all.size(); ++i) {
+      if ((all[i] == "--shard" || all[i] == "--out" || all[i] == "--threads") && i + 1 < all.size()) {
+        ++i;
+        continue;
+      }
+      cmd.push_back(all[i]);
+    }
+    k["command"] = cmd;
+    return k;
+  };
+  const nlohmann::json key0 = key(merged.provenance);
+  std::set<int> seen;
+  for (size_t i = 0; i < shards.size(); ++i) {
+    SweepResult r = sweep_from_json(shards[i], paths[i]);
+    const nlohmann::json k = key(r.provenance);
+    for (auto it = key0.begin(); it != key0.end(); ++it)
+      if (!k.contains(it.key()) || k.at(it.key()) != it.value())
+        throw InputError(paths[i], "provenance '" + it.key() + "' differs from " + paths[0] + "'s");
+    if (r.shards != merged.shards || r.rows_total != merged.rows_total || r.scene != merged.scene)
+      throw InputError(paths[i], "is a shard of another sweep than " + paths[0]);
+    if (!seen.insert(r.shard).second) throw InputError(paths[i], fmt::format("shard {} given twice", r.shard));
+    for (SweepRow& row : r.rows) {
+      if (row.index >= merged.rows_total || int(row.index % size_t(merged.shards)) != r.shard)
+        throw InputError(paths[i], fmt::format("row {} does not belong to shard {}/{}", row.index, r.shard, merged.shards));
+      merged.rows.push_back(std::move(row));
+    }
+  }
+  std::sort(merged.rows.begin(), merged.rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
+  for (size_t k = 0; k < merged.rows.size(); ++k)
+    if (merged.rows[k].index != k)
+      throw InputError("merge", fmt::format("row {} is {}", k, merged.rows[k].index < k ? "present twice" : "missing"));
+  if (merged.rows.size() != merged.rows_total)
+    throw InputError("merge", fmt::format("{} of {} rows present", merged.rows.size(), merged.rows_total));
+  merged.shard = 0;
+  merged.shards = 1;
+  return merged;
 }
 
 }  // namespace shadowlab

@@ -26,6 +26,7 @@ struct SweepConfig {
   uint64_t max_memory = 0;      // refuse runs estimated above this many bytes (0: what is available)
   float ambient = 0.1f;         // ambient level of the shaded images (techniques/scene_shading.h)
   bool shaded_sheet = false;    // contact sheet of shaded images (--sheet shaded), else masks
+  int shard = 0, shards = 1;    // run only rows with index mod shards == shard (--shard i/N)
 };
 
 struct SweepRow {
@@ -33,6 +34,7 @@ struct SweepRow {
   std::string technique;        // registry name of the spec, e.g. "csm" ("rt" for the reference)
   std::string spec;             // canonical spec text
   int res = 0;                  // 0 for the reference
+  size_t index = 0;             // technique index × resolutions + resolution index (--shard)
   ShadowResult result;
   MetricReport report;
   ImageF shaded_cell;           // the shaded image box-downscaled to the contact sheet's cell
@@ -45,6 +47,8 @@ struct SweepResult {
   SweepRow reference;
   std::vector<SweepRow> rows;
   nlohmann::json provenance;    // experiments/provenance.h; in every file the sweep writes
+  size_t rows_total = 0;        // rows of the whole sweep (all shards)
+  int shard = 0, shards = 1;
 };
 
 SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config);
@@ -61,6 +65,14 @@ std::string suite_table(const std::vector<SweepResult>& results);
 void write_sweep_json(const std::string& path, const SweepResult& result);
 // The object write_sweep_json writes.
 nlohmann::json sweep_json(const SweepResult& result);
+
+// Reads sweep_json's output back (the rows' scores, times and work counts; no images): how
+// merge combines the shards of `resolution_sweep --shard i/N`. `where` names the file in errors.
+SweepResult sweep_from_json(const nlohmann::json& j, const std::string& where);
+// Combines shard results: the same scene, settings and provenance, every row index present
+// exactly once; throws InputError naming the file otherwise.
+SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
+                               const std::vector<std::string>& paths);
 
 // One plot point per technique row (not the reference: compared with itself and without
 // timings, its total is not on the rows' scale): series = technique, time = shadow ms.

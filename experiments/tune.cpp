@@ -24,17 +24,6 @@ const std::vector<std::string> kDefaultSpaces = {
     "cvsm:res=256..1024/x2,blur=3|5", "cesm:res=256..1024/x2,blur=3|5",
     "cevsm:res=256..1024/x2,moments=2|4", "cmsm:res=256..1024/x2", "cpcss:res=256..1024/x2"};
 
-void parse_shard(const std::string& s, TuneConfig& c) {
-  const size_t slash = s.find('/');
-  long i = 0, n = 0;
-  if (slash == std::string::npos || !parse_long(s.substr(0, slash), i) || !parse_long(s.substr(slash + 1), n))
-    throw InputError("--shard", "expected i/N, got '" + s + "'");
-  if (n < 1 || n > 100000 || i < 0 || i >= n)
-    throw InputError("--shard", "expected 0 <= i < N <= 100000, got '" + s + "'");
-  c.shard = int(i);
-  c.shards = int(n);
-}
-
 void parse_weights(const std::string& s, MetricWeights& w) {
   for (const std::string& item : split_spec_list("w:" + s)) {
     const Spec spec = parse_spec(item, "--metric-weights");
@@ -61,10 +50,10 @@ int main(int argc, char** argv) {
     std::string suite, shard, weights, strategy = "auto", objective = "total";
     std::optional<int> spp, repeats, max_evals;
     bool quick = false, no_cache = false, references_only = false;
-    std::vector<double> budgets_ms = {1, 2, 4, 8, 16}, budgets_bytes;
+    std::vector<double> budgets_ms = {2, 4, 8, 16, 32}, budgets_bytes;
     bool ms_given = false;
     add_text_repeated(cl, "--space", "SPEC", "a technique's parameter space, e.g. csm:res=256..2048/x2,pcf=1|3|5 (repeatable; README \"Tuning\" gives the syntax; default: the README's eight spaces)", spaces);
-    add_double_list(cl, "--budget-ms", "LIST", "shadow-time budgets in ms (default 1,2,4,8,16)", budgets_ms, 1e-6, 1e9);
+    add_double_list(cl, "--budget-ms", "LIST", "shadow-time budgets in ms (default 2,4,8,16,32)", budgets_ms, 1e-6, 1e9);
     add_double_list(cl, "--budget-bytes", "LIST", "map-bytes-touched budgets in bytes, e.g. 4e6,16e6 (default: none)", budgets_bytes, 1.0, 1e18);
     add_text(cl, "--objective", "NAME", "what to maximize: total, fidelity, aesthetics, detail, ssim, psnr, c10, c50, c90, dark, lit, acne or noise (default total)", objective);
     add_text(cl, "--metric-weights", "LIST", "weights of the total, e.g. fidelity=1,aesthetics=1,detail=1,performance=0 (default: those; time enters through the budgets)", weights);
@@ -85,7 +74,7 @@ int main(int argc, char** argv) {
     c.strategy = strategy;
     if (!weights.empty()) parse_weights(weights, c.weights);
     if (max_evals) c.max_evals = size_t(*max_evals);
-    if (!shard.empty()) parse_shard(shard, c);
+    if (!shard.empty()) parse_shard(shard, c.shard, c.shards);
     if (quick) {
       if (!common.width) common.width = 320;
       if (!common.height) common.height = 240;

@@ -125,5 +125,32 @@ TEST(TuneMains, HalvingRunsTwoRungsAndReportsThem) {
   EXPECT_LT(rung1, 9u);
 }
 
+// resolution_sweep --shard: three shards merge to the single process's rows, bit for bit.
+TEST(TuneMains, SweepShardsMergeToTheSingleProcessScores) {
+  const std::string dir = test::binary_path("sweep_shards");
+  std::filesystem::remove_all(dir);
+  const std::string cmd = "resolution_sweep --quick --width 64 --height 48 --resolutions 32,64 "
+                          "--techniques csm,cvsm,tsm --spp 8 --no-cache --threads 2";
+  ASSERT_EQ(run(cmd + " --out " + dir + "/single").exit_code, 0);
+  std::string files;
+  for (int i = 0; i < 3; ++i) {
+    const ProcResult s = run(cmd + " --out " + dir + "/shards --shard " + std::to_string(i) + "/3");
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    files += " " + dir + "/shards/sweep_shard" + std::to_string(i) + "of3.json";
+  }
+  const ProcResult m = run("merge" + files + " --out " + dir + "/merged");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const nlohmann::json a = read_json(dir + "/single/sweep.json"), b = read_json(dir + "/merged/sweep.json");
+  ASSERT_EQ(a["rows"].size(), 6u);
+  ASSERT_EQ(b["rows"].size(), 6u);
+  for (size_t i = 0; i < 6; ++i)
+    for (const char* k : {"spec", "c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail", "fidelity",
+                          "aesthetics", "ssim", "rmse", "psnr", "work"})
+      EXPECT_EQ(a["rows"][i][k], b["rows"][i][k]) << i << " " << k;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/merged/plot.svg"));
+  expect_clear_error("merge " + dir + "/shards/sweep_shard0of3.json --out " + dir + "/x", "is one of 3 shards, 1 files given");
+  expect_clear_error(cmd + " --suite hard --shard 0/2 --out " + dir + "/x", "--shard: not with --suite");
+}
+
 }  // namespace
 }  // namespace shadowlab
