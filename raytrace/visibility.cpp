@@ -16,18 +16,18 @@
 namespace shadowlab {
 namespace {
 
-constexpr int kTile = 8;                 // tiles of kTile × kTile pixels, one task each
+constexpr int kPixelTile = 8;                 // tiles of kPixelTile × kPixelTile pixels, one task each
 constexpr size_t kStreamCapacity = 2048;  // rays per rtcOccluded1M call (bounds scratch memory)
 
 struct TileGrid {
   int width, height, tiles_x, tiles_y;
   explicit TileGrid(int w, int h)
-      : width(w), height(h), tiles_x((w + kTile - 1) / kTile), tiles_y((h + kTile - 1) / kTile) {}
+      : width(w), height(h), tiles_x((w + kPixelTile - 1) / kPixelTile), tiles_y((h + kPixelTile - 1) / kPixelTile) {}
   size_t count() const { return size_t(tiles_x) * size_t(tiles_y); }
-  int x0(size_t t) const { return int(t % size_t(tiles_x)) * kTile; }
-  int y0(size_t t) const { return int(t / size_t(tiles_x)) * kTile; }
-  int x1(size_t t) const { return std::min(x0(t) + kTile, width); }
-  int y1(size_t t) const { return std::min(y0(t) + kTile, height); }
+  int x0(size_t t) const { return int(t % size_t(tiles_x)) * kPixelTile; }
+  int y0(size_t t) const { return int(t / size_t(tiles_x)) * kPixelTile; }
+  int x1(size_t t) const { return std::min(x0(t) + kPixelTile, width); }
+  int y1(size_t t) const { return std::min(y0(t) + kPixelTile, height); }
 };
 
 void check_gbuffer(const GBuffer& g) {
@@ -178,9 +178,9 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
   auto* rtc_scene = static_cast<RTCScene>(rt.native_scene());
 
   parallel_for(0, grid.count(), [&](size_t t) {
-    int visible[kTile * kTile] = {};
+    int visible[kPixelTile * kPixelTile] = {};
     ShadowStream stream(rtc_scene, visible);
-    int local_index[kTile * kTile];
+    int local_index[kPixelTile * kPixelTile];
     int traced = 0;
     for (int y = grid.y0(t); y < grid.y1(t); ++y)
       for (int x = grid.x0(t); x < grid.x1(t); ++x) {
@@ -195,15 +195,15 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
           mask.data[p] = 1.0f;
           continue;
         }
-        const int local = (y - grid.y0(t)) * kTile + (x - grid.x0(t));
+        const int local = (y - grid.y0(t)) * kPixelTile + (x - grid.x0(t));
         local_index[traced++] = local;
         stream.add(make_ray(org, to_light / dist, 0.0f, dist - eps), local);
       }
     stream.flush();
     for (int k = 0; k < traced; ++k) {
       const int local = local_index[k];
-      const size_t p = size_t(grid.y0(t) + local / kTile) * size_t(gbuffer.width) +
-                       size_t(grid.x0(t) + local % kTile);
+      const size_t p = size_t(grid.y0(t) + local / kPixelTile) * size_t(gbuffer.width) +
+                       size_t(grid.x0(t) + local % kPixelTile);
       mask.data[p] = visible[local] > 0 ? 1.0f : 0.0f;
     }
   });
@@ -229,8 +229,8 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
   constexpr float kTwoPi = 6.28318530717958647692f;
 
   parallel_for(0, grid.count(), [&](size_t t) {
-    int visible[kTile * kTile] = {};
-    bool traced[kTile * kTile] = {};
+    int visible[kPixelTile * kPixelTile] = {};
+    bool traced[kPixelTile * kPixelTile] = {};
     ShadowStream stream(rtc_scene, visible);
     MultiJitter mj(spp);
     for (int y = grid.y0(t); y < grid.y1(t); ++y)
@@ -246,7 +246,7 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
           mask.data[p] = 1.0f;
           continue;
         }
-        const int local = (y - grid.y0(t)) * kTile + (x - grid.x0(t));
+        const int local = (y - grid.y0(t)) * kPixelTile + (x - grid.x0(t));
         traced[local] = true;
 
         // Cone of directions subtended by the sphere: sin θmax = r/d. 1 − cos θmax is computed
@@ -286,10 +286,10 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
           }
       }
     stream.flush();
-    for (int local = 0; local < kTile * kTile; ++local) {
+    for (int local = 0; local < kPixelTile * kPixelTile; ++local) {
       if (!traced[local]) continue;
-      const size_t p = size_t(grid.y0(t) + local / kTile) * size_t(gbuffer.width) +
-                       size_t(grid.x0(t) + local % kTile);
+      const size_t p = size_t(grid.y0(t) + local / kPixelTile) * size_t(gbuffer.width) +
+                       size_t(grid.x0(t) + local % kPixelTile);
       mask.data[p] = float(visible[local]) / float(spp);
     }
     if (progress) progress->advance();

@@ -10,6 +10,7 @@
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
+#include "core/text.h"
 #include "core/error.h"
 #include "core/parse_number.h"
 #include "scenes/scene_library.h"
@@ -29,11 +30,6 @@ std::string first_line(const std::string& s) {
   std::string t = s.substr(0, s.find('\n'));
   while (!t.empty() && (t.back() == '\r' || t.back() == ' ')) t.pop_back();
   return t;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 // The image decoder given to tinygltf: stb_image, with the size checked from the header first
@@ -106,7 +102,7 @@ class Loader {
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(load_image, nullptr);
     std::string err, warn;
-    const std::string ext = lower(path_.substr(path_.find_last_of('.') + 1));
+    const std::string ext = ascii_lower(path_.substr(path_.find_last_of('.') + 1));
     bool ok = false;
     // tinygltf reports a missing file in `err`; so does every schema failure.
     if (ext == "glb")
@@ -538,7 +534,7 @@ class Loader {
 bool is_gltf_path(const std::string& path) {
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos) return false;
-  const std::string ext = lower(path.substr(dot + 1));
+  const std::string ext = ascii_lower(path.substr(dot + 1));
   return ext == "gltf" || ext == "glb";
 }
 

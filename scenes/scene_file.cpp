@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/text.h"
 #include "core/error.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
@@ -111,16 +112,11 @@ void transform_model(Scene& model, const mat4& m) {
   }
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 }  // namespace
 
 bool is_scene_file_path(const std::string& path) {
   const size_t dot = path.find_last_of('.');
-  return dot != std::string::npos && lower(path.substr(dot + 1)) == "json";
+  return dot != std::string::npos && ascii_lower(path.substr(dot + 1)) == "json";
 }
 
 Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) {
