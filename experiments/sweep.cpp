@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/timer.h"
+#include "experiments/step_progress.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
@@ -30,16 +31,6 @@ std::string upper(std::string s) {
   return s;
 }
 
-void progress_line(const SweepConfig& c, size_t done, size_t total, const std::string& what,
-                   std::chrono::steady_clock::time_point start) {
-  if (!c.progress) return;
-  const double elapsed = ms_since(start) / 1000.0;
-  const double eta = done == 0 ? 0.0 : elapsed / double(done) * double(total - done);
-  std::fprintf(stderr, "\r[%zu/%zu] %-28s elapsed %5.1f s, ETA %5.1f s   ", done, total,
-               what.c_str(), elapsed, eta);
-  if (done == total) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
-}
 
 }  // namespace
 
@@ -90,7 +81,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   MetricScratch scratch;  // one set of metric buffers for every row
 
   // Reference first: the mask every row is compared with.
-  progress_line(config, done, total, "reference", start);
+  step_progress_line(config.progress, done, total, "reference", start);
   const TechniqueSpec ref_spec =
       parse_technique_spec("rt:spp=" + std::to_string(config.spp), "--spp");
   RunOptions ref_opt;
@@ -114,7 +105,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
                          &shaded);
   };
   shade(out.reference, "reference_", ref_spec.text);
-  progress_line(config, ++done, total, "reference", start);
+  step_progress_line(config.progress, ++done, total, "reference", start);
 
   out.rows_total = specs.size() * config.resolutions.size();
   out.shard = config.shard;
@@ -133,7 +124,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       row.index = row_index;
       row.technique = base.name;
       row.label = upper(base.text) + " " + std::to_string(res);
-      progress_line(config, done, total, row.label, start);
+      step_progress_line(config.progress, done, total, row.label, start);
       RunOptions opt;
       opt.repeats = config.repeats;
       opt.flag = "--techniques";
@@ -146,7 +137,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       std::replace_if(prefix.begin(), prefix.end(), [](char c) { return c == ':' || c == ',' || c == '='; }, '_');
       shade(row, prefix, spec.text);
       out.rows.push_back(std::move(row));
-      progress_line(config, ++done, total, out.rows.back().label, start);
+      step_progress_line(config.progress, ++done, total, out.rows.back().label, start);
     }
   return out;
 }

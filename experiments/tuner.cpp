@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/timer.h"
+#include "experiments/step_progress.h"
 #include "experiments/memory_check.h"
 #include "experiments/pareto_plot.h"
 #include "raster/gbuffer_pass.h"
@@ -108,16 +109,6 @@ TuneEval evaluate(const Point& p, const SceneRung& sr, int rung, const TuneConfi
   return e;
 }
 
-void progress_line(const TuneConfig& c, size_t done, size_t total, const std::string& what,
-                   std::chrono::steady_clock::time_point start) {
-  if (!c.progress) return;
-  const double elapsed = ms_since(start) / 1000.0;
-  const double eta = done == 0 ? 0.0 : elapsed / double(done) * double(total - done);
-  std::fprintf(stderr, "\r[%zu/%zu] %-40.40s elapsed %6.1f s, ETA %6.1f s   ", done, total,
-               what.c_str(), elapsed, eta);
-  if (done == total) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
-}
 
 }  // namespace
 
@@ -268,17 +259,18 @@ TuneResult run_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
   } else {
     out.rung_total[0] = points.size() * n_scenes;
     std::vector<double> obj(points.size(), 0.0), bytes(points.size(), 0.0);
+    size_t done0 = 0;
     for (size_t si = 0; si < n_scenes; ++si) {
       const SceneRung sr = prepare(scenes[si], 0, c);
       for (size_t pi = 0; pi < points.size(); ++pi) {
-        progress_line(c, pi * n_scenes + si, out.rung_total[0], "rung 0: " + points[pi].spec.text, start);
+        step_progress_line(c.progress, done0++, out.rung_total[0], "rung 0: " + points[pi].spec.text, start);
         TuneEval e = evaluate(points[pi], sr, 0, c, scratch);
         e.index = pi * n_scenes + si;
         e.point = pi;
         out.evals.push_back(std::move(e));
       }
     }
-    progress_line(c, out.rung_total[0], out.rung_total[0], "rung 0", start);
+    step_progress_line(c.progress, out.rung_total[0], out.rung_total[0], "rung 0", start);
     std::sort(out.evals.begin(), out.evals.end(), [](const TuneEval& a, const TuneEval& b) { return a.index < b.index; });
     // Aggregate over scenes in scene order: mean objective, largest bytes.
     for (const TuneEval& e : out.evals) {
@@ -311,7 +303,7 @@ TuneResult run_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
     for (size_t k = 0; k < full.size(); ++k) {
       const size_t index = k * n_scenes + si;
       if (index % size_t(c.shards) != size_t(c.shard)) continue;
-      progress_line(c, done, mine, points[full[k]].spec.text, start);
+      step_progress_line(c.progress, done, mine, points[full[k]].spec.text, start);
       TuneEval e = evaluate(points[full[k]], sr, 1, c, scratch);
       e.index = index;
       e.point = full[k];
@@ -319,7 +311,7 @@ TuneResult run_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
       ++done;
     }
   }
-  progress_line(c, mine, mine, "done", start);
+  step_progress_line(c.progress, mine, mine, "done", start);
   std::sort(rung1.begin(), rung1.end(), [](const TuneEval& a, const TuneEval& b) { return a.index < b.index; });
   for (TuneEval& e : rung1) out.evals.push_back(std::move(e));
   return out;

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (in build-fuzz/, or SHADOWLAB_FUZZ_BUILD) and runs each
-# for SECONDS, two at a time, on a working copy of its checked-in seed corpus (fuzz/corpus/<name>/). A crash, a hang
+# Builds the libFuzzer targets with clang (in build-fuzz/, or in the clang -DSHADOWLAB_FUZZ=ON
+# tree that SHADOWLAB_FUZZ_BUILD names) and runs each for SECONDS, as many at a time as there are
+# cores, on a working copy of its checked-in seed corpus (fuzz/corpus/<name>/). A crash, a hang
 # (> 10 s on one input) or an allocation over 2 GB stops the run with a non-zero exit and leaves
-# the input in that folder. Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file]
+# the input in that folder.
+# Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-30}

@@ -141,6 +141,9 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(path, "JSON syntax error at byte " + std::to_string(e.byte));
+  } catch (const json::out_of_range&) {
+    // A number beyond double's range (nlohmann's error 406; found by fuzz_scene_file).
+    throw InputError(path, "a JSON number is out of range (beyond ±1.8e308)");
   }
   const Reader top(path, doc, "");
   top.only({"base", "models", "camera", "light", "projector", "ground"});

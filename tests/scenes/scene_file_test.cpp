@@ -129,6 +129,9 @@ TEST(SceneFile, BadFilesNameTheKey) {
       {R"({})", "names neither a base scene nor models"},
       {R"({"base": "plane",)", "JSON syntax error at byte"},
       {R"([1, 2])", "expected an object"},
+      // A number beyond double's range threw nlohmann's out_of_range past the loader (exit 1
+      // with the library's message; found by fuzz_scene_file).
+      {R"({"base": "plane", "light": {"radius": 4e444}})", "a JSON number is out of range"},
   };
   int i = 0;
   for (const auto& [text, expect] : cases) {
