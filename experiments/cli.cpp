@@ -431,6 +431,9 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   try {
     const bool repeatable =
         std::find(std::begin(kRepeatable), std::end(kRepeatable), prog) != std::end(kRepeatable);
+    for (int i = 1; i < argc; ++i)
+      if (std::string(argv[i]).rfind("--from=", 0) == 0)
+        throw InputError("--from", "give the file as a separate word: --from FILE.json");
     for (int i = 1; i < argc && repeatable; ++i)
       if (std::string(argv[i]) == "--from") {
         if (i + 1 >= argc) throw InputError("--from", "needs a file (a timing.json, sweep.json or tune.json)");

@@ -14,6 +14,55 @@
 
 using namespace shadowlab;
 
+namespace {
+
+// The merged provenance: shard 0's, with the command that repeats the whole run (--from): the
+// shard's command without --shard and --out.
+nlohmann::json merged_provenance(const nlohmann::json& shard0, const std::vector<std::string>& paths) {
+  nlohmann::json prov = shard0;
+  std::vector<std::string> cmd;
+  const std::vector<std::string> all = shard0.at("command").get<std::vector<std::string>>();
+  for (size_t i = 0; i < all.size(); ++i) {
+    if ((all[i] == "--shard" || all[i] == "--out") && i + 1 < all.size()) {
+      ++i;
+      continue;
+    }
+    if (all[i].rfind("--shard=", 0) == 0 || all[i].rfind("--out=", 0) == 0) continue;
+    cmd.push_back(all[i]);
+  }
+  prov["command"] = cmd;
+  prov["merged_from"] = paths;
+  prov["merged_by"] = provenance_json({}, 0, 0);
+  return prov;
+}
+
+int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::string>& paths,
+          const std::string& out) {
+    if (shards[0].contains("kind") && shards[0]["kind"] == "sweep") {
+      SweepResult r = merge_sweep_shards(shards, paths);
+      r.provenance = merged_provenance(r.provenance, paths);
+      std::printf("%s", sweep_table(r).c_str());
+      write_sweep_csv(out + "/sweep.csv", r);
+      write_sweep_json(out + "/sweep.json", r);
+      write_pareto_svg(out + "/plot.svg", sweep_plot_points(r),
+                       "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
+                           std::to_string(r.height) + " (merged from " + std::to_string(shards.size()) + " shards)");
+      std::printf("merged %zu shards; wrote %s/sweep.csv, sweep.json, plot.svg\n", shards.size(), out.c_str());
+      return 0;
+    }
+    const TuneResult r = merge_tune_shards(shards, paths);
+    TuneConfig c = tune_config_from_json(shards[0].at("config"), paths[0]);
+    c.shards = 1;
+    c.shard = 0;
+    const nlohmann::json prov = merged_provenance(shards[0].at("provenance"), paths);
+    std::printf("%s", tune_table(r, c).c_str());
+    std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
+                write_tune_outputs(out, r, c, prov).c_str());
+    return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
     CommandLine cl = make_command_line("merge", "SHARD.json... [--out DIR]  (tune_shardIofN.json or sweep_shardIofN.json files)");
@@ -33,27 +82,11 @@ int main(int argc, char** argv) {
       shards.push_back(std::move(j));
     }
     make_output_dir(out, "--out");
-    if (shards[0].contains("kind") && shards[0]["kind"] == "sweep") {
-      const SweepResult r = merge_sweep_shards(shards, paths);
-      std::printf("%s", sweep_table(r).c_str());
-      write_sweep_csv(out + "/sweep.csv", r);
-      write_sweep_json(out + "/sweep.json", r);
-      write_pareto_svg(out + "/plot.svg", sweep_plot_points(r),
-                       "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
-                           std::to_string(r.height) + " (merged from " + std::to_string(shards.size()) + " shards)");
-      std::printf("merged %zu shards; wrote %s/sweep.csv, sweep.json, plot.svg\n", shards.size(), out.c_str());
-      return 0;
+    try {
+      return merge(shards, paths, out);
+    } catch (const nlohmann::json::exception& e) {
+      // A field of the wrong type in a shard file (the readers check what they convert).
+      throw InputError("merge", std::string("malformed shard file: ") + e.what());
     }
-    const TuneResult r = merge_tune_shards(shards, paths);
-    TuneConfig c = tune_config_from_json(shards[0].at("config"), paths[0]);
-    c.shards = 1;
-    c.shard = 0;
-    nlohmann::json prov = shards[0].at("provenance");
-    prov["merged_from"] = paths;
-    prov["merged_by"] = provenance_json({}, 0, 0);
-    std::printf("%s", tune_table(r, c).c_str());
-    std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
-                write_tune_outputs(out, r, c, prov).c_str());
-    return 0;
   });
 }

@@ -1,6 +1,7 @@
 #include "experiments/param_space.h"
 
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 #include <fmt/format.h>
@@ -42,8 +43,13 @@ long whole_steps(double n) {
 }  // namespace
 
 size_t ParamSpace::size() const {
+  // Saturating: six keys of 4096 values each would wrap to 0 (2^72).
   size_t n = 1;
-  for (const ParamDomain& d : keys) n *= d.values.size();
+  for (const ParamDomain& d : keys) {
+    const size_t k = d.values.size();
+    if (k != 0 && n > SIZE_MAX / k) return SIZE_MAX;
+    n *= k;
+  }
   return n;
 }
 
@@ -61,6 +67,8 @@ std::vector<std::string> parse_domain(const std::string& text, const std::string
   if (dots == std::string::npos) {
     for (const std::string& v : split(text, '|')) {
       if (v.empty()) throw fail("empty value in a list");
+      if (values.size() >= kMaxDomainValues)
+        throw fail("more than " + std::to_string(kMaxDomainValues) + " values");
       values.push_back(v);
     }
   } else {
@@ -80,7 +88,9 @@ std::vector<std::string> parse_domain(const std::string& text, const std::string
       if (!parse_long(a_text, ia) || !parse_long(b_text, ib))
         throw fail("a range without a step needs whole-number ends (give /STEP)");
       check_count(double(ib) - double(ia));
-      for (long i = ia; i <= ib; ++i) v.push_back(double(i));
+      // Counted in unsigned arithmetic: `i <= ib` never ends for ib = LONG_MAX.
+      const unsigned long count = (unsigned long)ib - (unsigned long)ia;
+      for (unsigned long k = 0; k <= count; ++k) v.push_back(double(ia) + double(k));
     } else if (step[0] == 'x') {
       const double f = number(step.substr(1));
       if (!(f > 1.0)) throw fail("factor must be > 1");

@@ -18,6 +18,7 @@
 #include "experiments/step_progress.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/memory_check.h"
+#include "experiments/json_read.h"
 #include "experiments/output_files.h"
 #include "experiments/provenance.h"
 #include "techniques/scene_shading.h"
@@ -327,13 +328,13 @@ ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
 
 namespace {
 
-SweepRow row_from_json(const nlohmann::json& j) {
+SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
   SweepRow row;
   row.label = j.at("label").get<std::string>();
-  row.index = j.at("index").get<size_t>();
+  row.index = json_uint(j, "index", uint64_t(1) << 40, where);
   row.technique = j.at("technique").get<std::string>();
   row.spec = j.at("spec").get<std::string>();
-  row.res = j.at("res").get<int>();
+  row.res = int(json_uint(j, "res", 1 << 20, where));
   MetricReport& m = row.report;
   for (const auto& [k, v] : std::initializer_list<std::pair<const char*, double MetricReport::*>>{
            {"c10", &MetricReport::c10}, {"c50", &MetricReport::c50}, {"c90", &MetricReport::c90},
@@ -354,16 +355,16 @@ SweepRow row_from_json(const nlohmann::json& j) {
   r.map_ms = ms("map_ms");
   r.lookup_ms = ms("lookup_ms");
   const nlohmann::json& w = j.at("work");
-  r.work.triangles_submitted = w.at("triangles_submitted").get<uint64_t>();
-  r.work.triangles_binned = w.at("triangles_binned").get<uint64_t>();
-  r.work.texels_rendered = w.at("texels_rendered").get<uint64_t>();
-  r.work.texels_filtered = w.at("texels_filtered").get<uint64_t>();
-  r.work.pixels_looked_up = w.at("pixels_looked_up").get<uint64_t>();
-  r.work.taps = w.at("taps").get<uint64_t>();
-  r.work.bytes_written = w.at("bytes_written").get<uint64_t>();
-  r.work.bytes_read = w.at("bytes_read").get<uint64_t>();
-  r.faces_needed = j.at("faces_needed").get<int>();
-  r.faces_rendered = j.at("faces_rendered").get<int>();
+  r.work.triangles_submitted = json_uint(w, "triangles_submitted", UINT64_MAX, where);
+  r.work.triangles_binned = json_uint(w, "triangles_binned", UINT64_MAX, where);
+  r.work.texels_rendered = json_uint(w, "texels_rendered", UINT64_MAX, where);
+  r.work.texels_filtered = json_uint(w, "texels_filtered", UINT64_MAX, where);
+  r.work.pixels_looked_up = json_uint(w, "pixels_looked_up", UINT64_MAX, where);
+  r.work.taps = json_uint(w, "taps", UINT64_MAX, where);
+  r.work.bytes_written = json_uint(w, "bytes_written", UINT64_MAX, where);
+  r.work.bytes_read = json_uint(w, "bytes_read", UINT64_MAX, where);
+  r.faces_needed = int(json_uint(j, "faces_needed", 64, where));
+  r.faces_rendered = int(json_uint(j, "faces_rendered", 64, where));
   r.notes = j.at("notes").get<std::string>();
   return row;
 }
@@ -375,15 +376,17 @@ SweepResult sweep_from_json(const nlohmann::json& j, const std::string& where) {
     if (!j.contains("kind") || j.at("kind") != "sweep") throw InputError(where, "not a resolution_sweep result");
     SweepResult r;
     r.scene = j.at("scene").get<std::string>();
-    r.width = j.at("width").get<int>();
-    r.height = j.at("height").get<int>();
+    r.width = int(json_uint(j, "width", 1 << 20, where));
+    r.height = int(json_uint(j, "height", 1 << 20, where));
     r.camera_ms = j.at("camera_ms").get<double>();
     r.provenance = j.at("provenance");
-    r.rows_total = j.at("rows_total").get<size_t>();
-    r.shard = j.at("shard").get<int>();
-    r.shards = j.at("shards").get<int>();
-    r.reference = row_from_json(j.at("reference"));
-    for (const nlohmann::json& row : j.at("rows")) r.rows.push_back(row_from_json(row));
+    r.rows_total = json_uint(j, "rows_total", uint64_t(1) << 40, where);
+    r.shards = int(std::max<uint64_t>(1, json_uint(j, "shards", 100000, where)));
+    r.shard = int(json_uint(j, "shard", uint64_t(r.shards - 1), where));
+    if (!r.provenance.is_object() || !r.provenance.contains("command") || !r.provenance["command"].is_array())
+      throw InputError(where, "its provenance has no command");
+    r.reference = row_from_json(j.at("reference"), where);
+    for (const nlohmann::json& row : j.at("rows")) r.rows.push_back(row_from_json(row, where));
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(where, std::string("malformed resolution_sweep result: ") + e.what());
@@ -408,6 +411,8 @@ SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
         ++i;
         continue;
       }
+      if (all[i].rfind("--shard=", 0) == 0 || all[i].rfind("--out=", 0) == 0 || all[i].rfind("--threads=", 0) == 0)
+        continue;
       cmd.push_back(all[i]);
     }
     k["command"] = cmd;
@@ -421,6 +426,7 @@ SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
     for (auto it = key0.begin(); it != key0.end(); ++it)
       if (!k.contains(it.key()) || k.at(it.key()) != it.value())
         throw InputError(paths[i], "provenance '" + it.key() + "' differs from " + paths[0] + "'s");
+    if (k != key0) throw InputError(paths[i], "provenance has fields " + paths[0] + "'s has not");
     if (r.shards != merged.shards || r.rows_total != merged.rows_total || r.scene != merged.scene)
       throw InputError(paths[i], "is a shard of another sweep than " + paths[0]);
     if (!seen.insert(r.shard).second) throw InputError(paths[i], fmt::format("shard {} given twice", r.shard));

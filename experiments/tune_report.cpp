@@ -8,10 +8,14 @@
 
 #include "core/error.h"
 #include "core/output_file.h"
+#include "experiments/json_read.h"
 #include "experiments/output_files.h"
 
 namespace shadowlab {
 namespace {
+
+// Indices and counts read back are at most this (a tune never has more evaluations).
+constexpr uint64_t kMaxIndex = uint64_t(1) << 40;
 
 // The MetricReport fields written per evaluation, in column order.
 std::vector<std::pair<const char*, double MetricReport::*>> report_fields() {
@@ -60,17 +64,17 @@ nlohmann::json eval_json(const TuneEval& e) {
   return j;
 }
 
-TuneEval eval_from_json(const nlohmann::json& j) {
+TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   TuneEval e;
-  e.index = j.at("index").get<size_t>();
-  e.point = j.at("point").get<size_t>();
-  e.rung = j.at("rung").get<int>();
+  e.index = json_uint(j, "index", kMaxIndex, where);
+  e.point = json_uint(j, "point", kMaxIndex, where);
+  e.rung = int(json_uint(j, "rung", 1, where));
   e.scene = j.at("scene").get<std::string>();
   e.technique = j.at("technique").get<std::string>();
   e.spec = j.at("spec").get<std::string>();
-  e.width = j.at("width").get<int>();
-  e.height = j.at("height").get<int>();
-  e.spp = j.at("spp").get<int>();
+  e.width = int(json_uint(j, "width", 1 << 20, where));
+  e.height = int(json_uint(j, "height", 1 << 20, where));
+  e.spp = int(json_uint(j, "spp", 1 << 30, where));
   e.objective = j.at("objective").get<double>();
   for (const auto& [k, m] : report_fields()) e.report.*m = j.at(k).get<double>();
   e.report.has_performance = j.at("has_performance").get<bool>();
@@ -79,7 +83,7 @@ TuneEval eval_from_json(const nlohmann::json& j) {
   e.filter_ms = j.at("filter_ms").get<double>();
   e.map_ms = j.at("map_ms").get<double>();
   e.lookup_ms = j.at("lookup_ms").get<double>();
-  for (const auto& [k, m] : work_fields()) e.work.*m = j.at("work").at(k).get<uint64_t>();
+  for (const auto& [k, m] : work_fields()) e.work.*m = json_uint(j.at("work"), k, UINT64_MAX, where);
   return e;
 }
 
@@ -267,9 +271,10 @@ TuneResult tune_from_json(const nlohmann::json& j, const std::string& where) {
     r.points = j.at("points").get<std::vector<std::string>>();
     r.techniques = j.at("techniques").get<std::vector<std::string>>();
     r.strategy = j.at("strategy").get<std::string>();
-    r.rung_total[0] = j.at("rung_total").at(0).get<size_t>();
-    r.rung_total[1] = j.at("rung_total").at(1).get<size_t>();
-    for (const nlohmann::json& e : j.at("evaluations")) r.evals.push_back(eval_from_json(e));
+    const nlohmann::json totals = {{"rung0", j.at("rung_total").at(0)}, {"rung1", j.at("rung_total").at(1)}};
+    r.rung_total[0] = json_uint(totals, "rung0", kMaxIndex, where);
+    r.rung_total[1] = json_uint(totals, "rung1", kMaxIndex, where);
+    for (const nlohmann::json& e : j.at("evaluations")) r.evals.push_back(eval_from_json(e, where));
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(where, std::string("malformed tune result: ") + e.what());
@@ -308,7 +313,7 @@ TuneResult merge_tune_shards(const std::vector<nlohmann::json>& shards,
   TuneResult merged = tune_from_json(shards[0], paths[0]);
   merged.evals.clear();
   const nlohmann::json& config0 = shards[0].at("config");
-  const int n = config0.at("shards").get<int>();
+  const int n = int(json_uint(config0, "shards", 100000, paths[0]));
   if (int(shards.size()) != n)
     throw InputError(paths[0], fmt::format("is one of {} shards, {} files given", n, shards.size()));
   // Provenance that must agree: what determines the scores. Machine and date may differ.
@@ -336,7 +341,7 @@ TuneResult merge_tune_shards(const std::vector<nlohmann::json>& shards,
     if (r.scenes != merged.scenes || r.points != merged.points || r.strategy != merged.strategy ||
         r.rung_total[0] != merged.rung_total[0] || r.rung_total[1] != merged.rung_total[1])
       throw InputError(paths[i], "lists other scenes, points or evaluation counts than " + paths[0]);
-    const int id = j.at("shard").get<int>();
+    const int id = int(json_uint(j, "shard", 100000, paths[i]));
     if (!shard_ids.insert(id).second)
       throw InputError(paths[i], fmt::format("shard {} given twice", id));
     for (TuneEval& e : r.evals) {
@@ -374,13 +379,13 @@ TuneConfig tune_config_from_json(const nlohmann::json& j, const std::string& whe
     c.weights.performance = w.at("performance").get<double>();
     c.weights.target_fps = w.at("target_fps").get<double>();
     c.strategy = j.at("strategy").get<std::string>();
-    c.max_evals = j.at("max_evals").get<size_t>();
-    c.spp = j.at("spp").get<int>();
-    c.repeats = j.at("repeats").get<int>();
-    c.eta = j.at("eta").get<int>();
-    c.small_divisor = j.at("small_divisor").get<int>();
-    c.small_spp = j.at("small_spp").get<int>();
-    c.shards = j.at("shards").get<int>();
+    c.max_evals = json_uint(j, "max_evals", 100000000, where);
+    c.spp = int(json_uint(j, "spp", 1 << 20, where));
+    c.repeats = int(json_uint(j, "repeats", 100000, where));
+    c.eta = int(std::max<uint64_t>(1, json_uint(j, "eta", 1000, where)));
+    c.small_divisor = int(std::max<uint64_t>(1, json_uint(j, "small_divisor", 1000, where)));
+    c.small_spp = int(json_uint(j, "small_spp", 1 << 20, where));
+    c.shards = int(std::max<uint64_t>(1, json_uint(j, "shards", 100000, where)));
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(where, std::string("malformed tune config: ") + e.what());

@@ -2,6 +2,8 @@
 // malformed spaces refused with the reason.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 #include "core/error.h"
 #include "experiments/param_space.h"
 
@@ -62,6 +64,19 @@ TEST(ParamSpace, MalformedDomainsAreRefusedWithTheReason) {
   EXPECT_NE(reason("csm:pcf").find("expected key=domain"), std::string::npos);
   EXPECT_NE(reason(":res=1").find("no technique name"), std::string::npos);
   EXPECT_NE(reason("csm:res=a..b/x2").find("not a number"), std::string::npos);
+  // Found by review: this range looped forever (i <= LONG_MAX) before the counted loop; its
+  // values coincide in double, so it is refused.
+  EXPECT_NE(reason("csm:res=9223372036854775800..9223372036854775807").find("occurs twice"), std::string::npos);
+  std::string list = "csm:res=0";
+  for (int i = 1; i <= 4096; ++i) list += "|" + std::to_string(i);
+  EXPECT_NE(reason(list).find("more than 4096 values"), std::string::npos);
+}
+
+TEST(ParamSpace, SizeSaturatesInsteadOfWrapping) {
+  // Six keys of 4096 values: 2^72 points, which wrapped to 0 in size_t.
+  std::string text = "csm:";
+  for (char k = 'a'; k < 'g'; ++k) text += std::string(k == 'a' ? "" : ",") + k + "=1..4096";
+  EXPECT_EQ(parse_param_space(text, "--space").size(), SIZE_MAX);
 }
 
 }  // namespace

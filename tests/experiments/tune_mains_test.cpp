@@ -3,6 +3,7 @@
 // foreign shard sets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -97,6 +98,24 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
   expect_clear_error("merge " + dir + "/shards/tune_shard0of3.json " + dir + "/shards/tune_shard1of3.json " + dir +
                          "/shards/other.json --out " + dir + "/x",
                      "different configuration");
+  // Wrong types in a shard file are one-line errors, not exit 1 or a float-to-integer cast.
+  nlohmann::json huge = read_json(dir + "/shards/tune_shard2of3.json");
+  huge["evaluations"][0]["index"] = 1e30;
+  std::ofstream(dir + "/shards/huge.json") << huge.dump();
+  expect_clear_error("merge " + dir + "/shards/tune_shard0of3.json " + dir + "/shards/tune_shard1of3.json " + dir +
+                         "/shards/huge.json --out " + dir + "/x",
+                     "'index' is missing or not a whole number");
+  nlohmann::json noconfig = read_json(dir + "/shards/tune_shard0of3.json");
+  noconfig.erase("config");
+  std::ofstream(dir + "/shards/noconfig.json") << noconfig.dump();
+  expect_clear_error("merge " + dir + "/shards/noconfig.json " + dir + "/shards/tune_shard1of3.json " + dir +
+                         "/shards/tune_shard2of3.json --out " + dir + "/x",
+                     "malformed shard file");
+  // The merged result repeats the whole run: its command has no --shard and no --out.
+  const std::vector<std::string> merged_cmd = b["provenance"]["command"];
+  EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--shard"), 0);
+  EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--out"), 0);
+  expect_clear_error("tune --from=" + dir + "/merged/tune.json", "give the file as a separate word");
   nlohmann::json missing = read_json(dir + "/shards/tune_shard2of3.json");
   missing["evaluations"].erase(0);
   std::ofstream(dir + "/shards/missing.json") << missing.dump();
