@@ -431,7 +431,7 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   try {
     const bool repeatable =
         std::find(std::begin(kRepeatable), std::end(kRepeatable), prog) != std::end(kRepeatable);
-    for (int i = 1; i < argc; ++i)
+    for (int i = 1; i < argc && repeatable; ++i)
       if (std::string(argv[i]).rfind("--from=", 0) == 0)
         throw InputError("--from", "give the file as a separate word: --from FILE.json");
     for (int i = 1; i < argc && repeatable; ++i)
@@ -449,11 +449,6 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
         set_run_command(argc, argv);
         break;
       }
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
-    return 2;
-  }
-  try {
     for (int i = 1; i < argc; ++i) {
       if (std::string(argv[i]) == "--list-techniques") {
         std::printf("%s", technique_list_text().c_str());

@@ -20,16 +20,8 @@ namespace {
 // shard's command without --shard and --out.
 nlohmann::json merged_provenance(const nlohmann::json& shard0, const std::vector<std::string>& paths) {
   nlohmann::json prov = shard0;
-  std::vector<std::string> cmd;
-  const std::vector<std::string> all = shard0.at("command").get<std::vector<std::string>>();
-  for (size_t i = 0; i < all.size(); ++i) {
-    if ((all[i] == "--shard" || all[i] == "--out") && i + 1 < all.size()) {
-      ++i;
-      continue;
-    }
-    if (all[i].rfind("--shard=", 0) == 0 || all[i].rfind("--out=", 0) == 0) continue;
-    cmd.push_back(all[i]);
-  }
+  const std::vector<std::string> cmd =
+      command_without(shard0.at("command").get<std::vector<std::string>>(), {"--shard", "--out"});
   prov["command"] = cmd;
   prov["merged_from"] = paths;
   prov["merged_by"] = provenance_json({}, 0, 0);

@@ -161,6 +161,25 @@ void check_recorded_scene(const Scene& scene) {
                                    ", now " + now + "): its files changed");
 }
 
+std::vector<std::string> command_without(const std::vector<std::string>& args,
+                                         const std::vector<std::string>& flags) {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < args.size(); ++i) {
+    bool drop = false;
+    for (const std::string& f : flags) {
+      if (args[i] == f && i + 1 < args.size()) {
+        ++i;  // and its value
+        drop = true;
+      } else if (args[i].rfind(f + "=", 0) == 0) {
+        drop = true;
+      }
+      if (drop) break;
+    }
+    if (!drop) out.push_back(args[i]);
+  }
+  return out;
+}
+
 std::vector<std::pair<std::string, std::string>> provenance_attributes(const nlohmann::json& p) {
   std::vector<std::pair<std::string, std::string>> out;
   for (auto it = p.begin(); it != p.end(); ++it)

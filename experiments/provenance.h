@@ -41,6 +41,11 @@ std::vector<std::string> arguments_from_run(const std::string& program, const st
 // scene of that name (its file changed, or the build makes it differently).
 void check_recorded_scene(const Scene& scene);
 
+// args without the given flags and their values ("--out DIR" and "--out=DIR" alike): the part of
+// a recorded command that shards of one run share (merge), or that repeats the whole run.
+std::vector<std::string> command_without(const std::vector<std::string>& args,
+                                         const std::vector<std::string>& flags);
+
 // The same as flat text pairs, for EXR header attributes ("shadowlab:commit", …).
 std::vector<std::pair<std::string, std::string>> provenance_attributes(const nlohmann::json& p);
 

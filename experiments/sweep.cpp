@@ -404,17 +404,8 @@ SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
   auto key = [](const nlohmann::json& p) {
     nlohmann::json k = p;
     for (const char* f : {"date", "cpu", "threads"}) k.erase(f);
-    std::vector<std::string> cmd;
-    const std::vector<std::string> all = p.at("command").get<std::vector<std::string>>();
-    for (size_t i = 0; i < all.size(); ++i) {
-      if ((all[i] == "--shard" || all[i] == "--out" || all[i] == "--threads") && i + 1 < all.size()) {
-        ++i;
-        continue;
-      }
-      if (all[i].rfind("--shard=", 0) == 0 || all[i].rfind("--out=", 0) == 0 || all[i].rfind("--threads=", 0) == 0)
-        continue;
-      cmd.push_back(all[i]);
-    }
+    const std::vector<std::string> cmd =
+        command_without(p.at("command").get<std::vector<std::string>>(), {"--shard", "--out", "--threads"});
     k["command"] = cmd;
     return k;
   };

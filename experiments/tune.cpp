@@ -51,7 +51,6 @@ int main(int argc, char** argv) {
     std::optional<int> spp, repeats, max_evals;
     bool quick = false, no_cache = false, references_only = false;
     std::vector<double> budgets_ms = {2, 4, 8, 16, 32}, budgets_bytes;
-    bool ms_given = false;
     add_text_repeated(cl, "--space", "SPEC", "a technique's parameter space, e.g. csm:res=256..2048/x2,pcf=1|3|5 (repeatable; README \"Tuning\" gives the syntax; default: the README's eight spaces)", spaces);
     add_double_list(cl, "--budget-ms", "LIST", "shadow-time budgets in ms (default 2,4,8,16,32)", budgets_ms, 1e-6, 1e9);
     add_double_list(cl, "--budget-bytes", "LIST", "map-bytes-touched budgets in bytes, e.g. 4e6,16e6 (default: none)", budgets_bytes, 1.0, 1e18);
@@ -67,7 +66,6 @@ int main(int argc, char** argv) {
     add_text(cl, "--shard", "i/N", "evaluate only evaluations with index mod N == i (grid only); combine with build/experiments/merge (default 0/1)", shard);
     add_switch(cl, "--references-only", "compute (or find cached) the references the run needs, then exit: the first step of a sharded run", references_only);
     if (!parse_command_line(cl, argc, argv)) return 0;
-    (void)ms_given;
     c.budgets_ms = budgets_ms;
     c.budgets_bytes = budgets_bytes;
     c.objective = objective;

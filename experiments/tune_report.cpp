@@ -161,7 +161,7 @@ std::string tune_table(const TuneResult& r, const TuneConfig& c) {
                      r.scenes.size() > 1 ? " (mean over the scenes; time and bytes: the largest)" : "");
   auto table = [&](const std::vector<double>& budgets, bool bytes) {
     if (budgets.empty()) return;
-    out += fmt::format("\n{:<10} {:<10} {:<44} {:>9} {:>9} {:>10}\n", bytes ? "budget" : "budget",
+    out += fmt::format("\n{:<10} {:<10} {:<44} {:>9} {:>9} {:>10}\n", "budget",
                        "technique", "settings", c.objective, "time ms", "MB");
     for (double b : budgets) {
       const TuneSummary* best = best_under(sums, b, bytes);
@@ -255,7 +255,6 @@ nlohmann::json tune_json(const TuneResult& r, const TuneConfig& c, const nlohman
   j["shard"] = c.shard;
   j["scenes"] = r.scenes;
   j["points"] = r.points;
-  j["techniques"] = r.techniques;
   j["strategy"] = r.strategy;
   j["rung_total"] = {r.rung_total[0], r.rung_total[1]};
   j["evaluations"] = nlohmann::json::array();
@@ -269,7 +268,6 @@ TuneResult tune_from_json(const nlohmann::json& j, const std::string& where) {
     TuneResult r;
     r.scenes = j.at("scenes").get<std::vector<std::string>>();
     r.points = j.at("points").get<std::vector<std::string>>();
-    r.techniques = j.at("techniques").get<std::vector<std::string>>();
     r.strategy = j.at("strategy").get<std::string>();
     const nlohmann::json totals = {{"rung0", j.at("rung_total").at(0)}, {"rung1", j.at("rung_total").at(1)}};
     r.rung_total[0] = json_uint(totals, "rung0", kMaxIndex, where);

@@ -210,21 +210,20 @@ void check_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
     if (c.shards > 1)
       throw InputError("--shard", "needs --strategy grid (successive halving's second rung depends on every shard's first)");
   }
-  for (const Point& p : expand_points(c)) {
-    if (p.spec.name != c.spaces[p.space].technique)
-      throw InputError("--space", "'" + c.spaces[p.space].text + "': internal name mismatch");
+  // One expansion for every check below.
+  const std::vector<Point> expanded = expand_points(c);
+  std::vector<TechniqueSpec> specs;
+  for (const Point& p : expanded) {
     for (const Scene& s : scenes) validate_technique_for_scene(p.spec, s, "--space");
+    specs.push_back(p.spec);
   }
   // Two spaces may share a point; its files and rows would be ambiguous.
-  std::vector<std::string> texts;
-  for (const Point& p : expand_points(c)) texts.push_back(p.spec.text);
-  std::vector<std::string> sorted = texts;
+  std::vector<std::string> sorted;
+  for (const Point& p : expanded) sorted.push_back(p.spec.text);
   std::sort(sorted.begin(), sorted.end());
   const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
   if (dup != sorted.end()) throw InputError("--space", "point '" + *dup + "' occurs in two spaces");
   // Memory: the techniques run one at a time; every point bounds it.
-  std::vector<TechniqueSpec> specs;
-  for (const Point& p : expand_points(c)) specs.push_back(p.spec);
   for (const Scene& s : scenes) check_run_memory(s, specs, c.max_memory);
 }
 
@@ -244,10 +243,7 @@ TuneResult run_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
   const size_t n_scenes = scenes.size();
   TuneResult out;
   for (const Scene& s : scenes) out.scenes.push_back(s.name);
-  for (const Point& p : points) {
-    out.points.push_back(p.spec.text);
-    out.techniques.push_back(p.spec.name);
-  }
+  for (const Point& p : points) out.points.push_back(p.spec.text);
   out.strategy = resolved_strategy(c, points.size() * n_scenes);
   const auto start = std::chrono::steady_clock::now();
   MetricScratch scratch;

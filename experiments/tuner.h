@@ -66,7 +66,6 @@ struct TuneEval {
 struct TuneResult {
   std::vector<std::string> scenes;
   std::vector<std::string> points;        // every point's spec as generated, in order
-  std::vector<std::string> techniques;    // every point's technique name
   std::string strategy;                   // the strategy that ran (grid or halving)
   std::vector<TuneEval> evals;            // in (rung, index) order
   size_t rung_total[2] = {0, 0};          // evaluations each rung has over all shards

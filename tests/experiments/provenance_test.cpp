@@ -16,12 +16,8 @@ namespace {
 
 using test::expect_clear_error;
 using test::ProcResult;
+using test::read_json;
 using test::run;
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream f(path);
-  return nlohmann::json::parse(f);
-}
 
 std::string first_line(const std::string& path) {
   std::ifstream f(path);

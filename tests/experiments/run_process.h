@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "test_paths.h"
 
 namespace shadowlab::test {
@@ -54,5 +56,11 @@ inline void expect_clear_error(const std::string& cmd, const std::string& needle
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << cmd << "\nstderr: " << r.err;
 }
 
+
+// A JSON file the programs wrote.
+inline nlohmann::json read_json(const std::string& path) {
+  std::ifstream f(path);
+  return nlohmann::json::parse(f);
+}
 
 }  // namespace shadowlab::test

@@ -16,17 +16,13 @@ namespace {
 
 using test::expect_clear_error;
 using test::ProcResult;
+using test::read_json;
 using test::run;
 
 // 8 points: csm at 3 resolutions × 2 PCF widths, cvsm at 2 resolutions.
 const std::string kSmall =
     "tune --space 'csm:res=32..128/x2,pcf=1|3' --space 'cvsm:res=32|64' --width 96 --height 72 "
     "--spp 8 --repeats 1 --threads 2 --budget-ms 1,4,16 --budget-bytes 1e5,1e6 --no-cache";
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream f(path);
-  return nlohmann::json::parse(f);
-}
 
 TEST(TuneMains, BadSpacesAreOneLineErrorsBeforeAnyWork) {
   const std::string out = test::binary_path("tune_bad");
