@@ -53,17 +53,28 @@ __attribute__((target("avx2"))) inline void bilinear_weights4(__m256d fx, __m256
   w[3] = _mm256_mul_pd(fx, fy);
 }
 
-// mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits.
-__attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, const __m256d* A,
-                                                             const __m256d* B, __m256d& mean,
-                                                             __m256d& var) {
-  mean = _mm256_setzero_pd();
+// mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits;
+// in two halves (mean, then the variance about it) for callers that may skip the second.
+__attribute__((target("avx2"))) inline __m256d mixture_mean4(const __m256d* w, const __m256d* A) {
+  __m256d mean = _mm256_setzero_pd();
   for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
-  var = _mm256_setzero_pd();
+  return mean;
+}
+__attribute__((target("avx2"))) inline __m256d mixture_variance4(const __m256d* w,
+                                                                const __m256d* A,
+                                                                const __m256d* B, __m256d mean) {
+  __m256d var = _mm256_setzero_pd();
   for (int i = 0; i < 4; ++i) {
     const __m256d dm = _mm256_sub_pd(A[i], mean);
     var = _mm256_add_pd(var, _mm256_mul_pd(w[i], _mm256_add_pd(B[i], _mm256_mul_pd(dm, dm))));
   }
+  return var;
+}
+__attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, const __m256d* A,
+                                                             const __m256d* B, __m256d& mean,
+                                                             __m256d& var) {
+  mean = mixture_mean4(w, A);
+  var = mixture_variance4(w, A, B, mean);
 }
 
 // chebyshev for 4 lanes in double, before its rounding to float: std::max(a, b) is

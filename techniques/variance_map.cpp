@@ -83,13 +83,23 @@ inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const
 __attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
                                                   const __m256d* B, const __m256* M4,
                                                   __m256d fx, __m256d fy, __m256d t,
-                                                  int half) {
+                                                  __m256d active, int half) {
   const __m256d zero = _mm256_setzero_pd();
   __m256d w[4];
   bilinear_weights4(fx, fy, w);
-  __m256d mean, var;
-  mixture_moments4(w, A, B, mean, var);
-  __m256d result = chebyshev4(t, mean, var, _mm256_set1_pd(k.min_var), k.bleed);
+  // When every active lane has t <= μ, chebyshev4 gives 1 on each of them: skip the variance
+  // and the division (most batches of a scene are lit). A NaN lane fails t <= μ and takes the
+  // full path, as do batches with any shadowed lane; inactive lanes' results are unused.
+  const __m256d mean = mixture_mean4(w, A);
+  __m256d result;
+  if (_mm256_movemask_pd(_mm256_or_pd(_mm256_cmp_pd(t, mean, _CMP_LE_OQ),
+                                      _mm256_xor_pd(active, _mm256_castsi256_pd(
+                                                                _mm256_set1_epi64x(-1))))) == 0xF) {
+    result = _mm256_set1_pd(1.0);
+  } else {
+    const __m256d var = mixture_variance4(w, A, B, mean);
+    result = chebyshev4(t, mean, var, _mm256_set1_pd(k.min_var), k.bleed);
+  }
   if (k.maxdepth) {
     // m = max(max(M0, M1), max(M2, M3)) in float, then t > m + eps → 0.
     const __m256 m01 = _mm256_blendv_ps(M4[0], M4[1], _mm256_cmp_ps(M4[0], M4[1], _CMP_LT_OQ));
@@ -105,7 +115,8 @@ __attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m
 // The 8 lanes of a batch: two halves of vsm_value4.
 __attribute__((target("avx2"))) void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
                                                     const float* fx, const float* fy,
-                                                    const float* depth, float* out) {
+                                                    const float* depth, const int32_t* active,
+                                                    float* out) {
   __m256 M4[4];
   for (int i = 0; i < 4; ++i) M4[i] = _mm256_load_ps(v[2][i]);
   for (int half = 0; half < 2; ++half) {
@@ -117,7 +128,10 @@ __attribute__((target("avx2"))) void vsm_batch_avx2(const VsmConsts& k, const fl
     const __m256d res =
         vsm_value4(k, A, B, M4, _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half)),
                    _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half)),
-                   _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half)), half);
+                   _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half)),
+                   _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
+                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(active + 4 * half)))),
+                   half);
     _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(res));
   }
 }
@@ -137,7 +151,7 @@ struct VsmBatch {
     if (n < 3) std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread
 #if defined(__x86_64__)
     if (!k.fp32) {
-      vsm_batch_avx2(k, v, fx, fy, r.depth, out);
+      vsm_batch_avx2(k, v, fx, fy, r.depth, r.active, out);
       return;
     }
 #endif
