@@ -51,16 +51,19 @@ std::string keys_text(const MapParams& p) {
                      p.blur, e.moments, e.c_pos, e.c_neg, e.min_variance, e.bleed);
 }
 
+// Each warp's mean and variance are stored interleaved per texel, as VSM's (variance_map.cpp):
+// the positive warp's in map.a (texel i's at a[2i], a[2i + 1]), the negative warp's in map.c;
+// map.b and map.d stay empty.
 void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
     const float* d = map.dist.distance[f].data();
-    filter_warped_moments(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0, map.a[f],
-                          map.b[f]);
+    filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0,
+                                      map.a[f]);
     if (p.evsm.moments == 4)
-      filter_warped_moments(d, face.width, face.height, p.blur, p.evsm.c_neg, -1.0, map.c[f],
-                            map.d[f]);
+      filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_neg, -1.0,
+                                        map.c[f]);
   }
 }
 
@@ -140,18 +143,18 @@ SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const 
 }
 #endif
 
-// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then evsm_value's
-// arithmetic in AVX2 double (evsm_batch_avx2). Used only where the AVX2 kernels exist
-// (bilinear8_simd() is null otherwise, and the scalar loop runs evsm_value).
+// 8 lanes at once: each warp's interleaved bilinear taps loaded by the AVX2 kernel, then
+// evsm_value's arithmetic in AVX2 double (evsm_batch_avx2). Used only where the AVX2 kernels
+// exist (bilinear8_interleaved2_simd() is null otherwise, and the scalar loop runs evsm_value).
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
-  Bilinear8Fn bilinear8;
-  PlaneGather planes[4];  // a, b, c, d
-  int n;
+  Bilinear8x2Fn bilinear8x2;
+  PlaneGather warps[2];  // a (positive warp), c (negative warp)
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
-    bilinear8(c, r, planes, n, v, fx, fy);
+    bilinear8x2(c, r, warps[0], v, fx, fy);
+    if (k.four) bilinear8x2(c, r, warps[1], v + 2, fx, fy);
 #if defined(__x86_64__)
     evsm_batch_avx2(k, v, fx, fy, r.depth, out);
 #endif
@@ -173,21 +176,18 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     bilinear_indices(bl, f.width, idx);
     float P[4][4] = {};
     for (int i = 0; i < 4; ++i) {
-      P[0][i] = map.a[fi][idx[i]];
-      P[1][i] = map.b[fi][idx[i]];
+      P[0][i] = map.a[fi][2 * idx[i]];
+      P[1][i] = map.a[fi][2 * idx[i] + 1];
       if (k.four) {
-        P[2][i] = map.c[fi][idx[i]];
-        P[3][i] = map.d[fi][idx[i]];
+        P[2][i] = map.c[fi][2 * idx[i]];
+        P[3][i] = map.c[fi][2 * idx[i] + 1];
       }
     }
     return evsm_value(k, P[0], P[1], P[2], P[3], bl.fx, bl.fy, r.depth);
   };
-  EvsmBatch batch{k, bilinear8_simd(),
-                  {plane_gather(map.a), plane_gather(map.b), plane_gather(map.c),
-                   plane_gather(map.d)},
-                  k.four ? 4 : 2};
-  bool gathers = batch.bilinear8 != nullptr;
-  for (int i = 0; i < batch.n; ++i) gathers = gathers && batch.planes[i].ok;
+  EvsmBatch batch{k, bilinear8_interleaved2_simd(), {plane_gather(map.a), plane_gather(map.c)}};
+  const bool gathers =
+      batch.bilinear8x2 != nullptr && batch.warps[0].ok && (!k.four || batch.warps[1].ok);
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

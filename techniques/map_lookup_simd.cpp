@@ -498,8 +498,85 @@ SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
   }
 }
 
+// The bilinear footprint of 8 receivers in one interleaved plane of two values per texel
+// (texel i's at plane.base[offset + 2i] and [+ 2i + 1]; variance_map.cpp's mean and variance):
+// bilinear8_pairs_avx2's taps, with one 16-byte load per lane and row fetching both taps' two
+// values, and the same edge rule (the load starts at clamp(ix, 0, w − 2); lanes clamped at the
+// left edge take the first texel for both taps, at the right edge the second). Faces 1 texel
+// wide, or no active lane: the clamped taps lane by lane. values[v][tap][lane].
+SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receivers8& r,
+                                         const PlaneGather& plane, float (*values)[4][8],
+                                         float* fx, float* fy) {
+  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
+  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const int active_bits = _mm256_movemask_ps(active);
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
+  const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
+  const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
+  const __m256i ix = floor_i(gx), iy = floor_i(gy);
+  _mm256_storeu_ps(fx, _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix)));
+  _mm256_storeu_ps(fy, _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy)));
+  const __m256i off = lane_i(plane.offset, face);
+  const __m256i r0 = _mm256_mullo_epi32(clamp_i(iy, zero, hm), w);
+  const __m256i r1 = _mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w);
+  if (_mm256_movemask_ps(_mm256_and_ps(active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
+      active_bits == 0) {
+    const __m256i x0 = clamp_i(ix, zero, wm), x1 = clamp_i(_mm256_add_epi32(ix, one), zero, wm);
+    alignas(32) int32_t at[4][8];
+    const __m256i idx[4] = {_mm256_add_epi32(r0, x0), _mm256_add_epi32(r0, x1),
+                            _mm256_add_epi32(r1, x0), _mm256_add_epi32(r1, x1)};
+    for (int t = 0; t < 4; ++t)
+      _mm256_store_si256(reinterpret_cast<__m256i*>(at[t]),
+                         _mm256_add_epi32(off, _mm256_add_epi32(idx[t], idx[t])));
+    for (int t = 0; t < 4; ++t)
+      for (int k = 0; k < 8; ++k) {
+        const bool on = (active_bits >> k) & 1;
+        values[0][t][k] = on ? plane.base[at[t][k]] : 0.0f;
+        values[1][t][k] = on ? plane.base[at[t][k] + 1] : 0.0f;
+      }
+    return;
+  }
+  const __m256i wm2 = _mm256_sub_epi32(wm, one);
+  const __m256i start = clamp_i(ix, zero, wm2);
+  const __m256 left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
+  const __m256 right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
+  const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
+  const int first_active = __builtin_ctz(unsigned(active_bits));
+  for (int y = 0; y < 2; ++y) {
+    alignas(32) int32_t at[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at),
+                       _mm256_add_epi32(off, _mm256_add_epi32(row[y], row[y])));
+    for (int k = 0; k < 8; ++k)
+      if (!((active_bits >> k) & 1)) at[k] = at[first_active];
+    // Lane k's (u0 v0 u1 v1): the first tap's two values, then the second's.
+    auto quad = [&](int k) { return _mm_loadu_ps(plane.base + at[k]); };
+    // Y_k = lanes k (low half) and k + 4 (high half); a 4 × 4 transpose in each half.
+    const __m256 y0 = _mm256_set_m128(quad(4), quad(0)), y1 = _mm256_set_m128(quad(5), quad(1));
+    const __m256 y2 = _mm256_set_m128(quad(6), quad(2)), y3 = _mm256_set_m128(quad(7), quad(3));
+    const __m256 t0 = _mm256_unpacklo_ps(y0, y1);  // u0 of lanes 0 1, v0 of lanes 0 1
+    const __m256 t1 = _mm256_unpackhi_ps(y0, y1);  // u1 …, v1 …
+    const __m256 t2 = _mm256_unpacklo_ps(y2, y3);  // lanes 2 3
+    const __m256 t3 = _mm256_unpackhi_ps(y2, y3);
+    const __m256 u_first = _mm256_shuffle_ps(t0, t2, 0x44), v_first = _mm256_shuffle_ps(t0, t2, 0xEE);
+    const __m256 u_second = _mm256_shuffle_ps(t1, t3, 0x44), v_second = _mm256_shuffle_ps(t1, t3, 0xEE);
+    _mm256_storeu_ps(values[0][2 * y], _mm256_and_ps(_mm256_blendv_ps(u_first, u_second, right), active));
+    _mm256_storeu_ps(values[0][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(u_second, u_first, left), active));
+    _mm256_storeu_ps(values[1][2 * y], _mm256_and_ps(_mm256_blendv_ps(v_first, v_second, right), active));
+    _mm256_storeu_ps(values[1][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(v_second, v_first, left), active));
+  }
+}
+
 }  // namespace
 #endif
+
+Bilinear8x2Fn bilinear8_interleaved2_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return bilinear8_interleaved2_avx2;
+#endif
+  return nullptr;
+}
 
 Receivers8Fn receivers8_simd() {
 #ifdef SHADOWLAB_HAVE_X86

@@ -89,7 +89,14 @@ using Bilinear8Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
                              const PlaneGather* planes, int n, float (*values)[4][8], float* fx,
                              float* fy);
 
+// The same footprint in one plane holding two values per texel, interleaved (texel i's at
+// plane.base[offset[face] + 2i] and [+ 2i + 1]): values[value][tap][lane], value 0 or 1.
+using Bilinear8x2Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
+                               const PlaneGather& plane, float (*values)[4][8], float* fx,
+                               float* fy);
+
 // The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
+Bilinear8x2Fn bilinear8_interleaved2_simd();
 Receivers8Fn receivers8_simd();
 Depth1Fn depth1_simd();
 PcfFn pcf_simd();

@@ -23,6 +23,11 @@ struct FilterScratch {
 // smaller-magnitude one-sided difference (so a silhouette's jump does not count).
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
                            std::vector<float>& mean, std::vector<float>& variance);
+// filter_moments_double's values in one interleaved plane: texel i's mean at mean_variance[2i],
+// its variance at [2i + 1] (the VSM lookup's storage: one load fetches both of a tap's values,
+// and a bilinear footprint row touches one cache line instead of two).
+void filter_moments_double_interleaved(const float* dist, int w, int h, int k, bool slope_term,
+                                       std::vector<float>& mean_variance);
 // The naive form, kept to measure it: (d, d²) summed and stored in float.
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
                          std::vector<float>& m1, std::vector<float>& m2);
@@ -43,6 +48,10 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 // filter_moments_double. |v| <= e^c and v² <= e^(2c): finite in float for c <= 44.36.
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                            std::vector<float>& mean, std::vector<float>& variance);
+// filter_warped_moments' values in one interleaved plane (texel i's mean at [2i], variance at
+// [2i + 1]), the EVSM lookup's storage, as filter_moments_double_interleaved for VSM.
+void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, double c,
+                                       double sign, std::vector<float>& mean_variance);
 
 // MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
 // "nothing seen" as 1), box-filtered in double and stored as floats in out[0..3].

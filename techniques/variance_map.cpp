@@ -2,6 +2,7 @@
 // (techniques/moment_filter.h), looked up bilinearly and bounded by Chebyshev's inequality with
 // the variance floor and the light-bleeding reduction; Krave's max-depth test and slope moment.
 #include <algorithm>
+#include <vector>
 
 #include <fmt/format.h>
 #if defined(__x86_64__)
@@ -31,16 +32,28 @@ std::string keys_text(const MapParams& p) {
                      p.blur, p.vsm.min_variance, p.vsm.bleed, p.vsm.maxdepth_eps);
 }
 
+// The two moments of a texel are stored interleaved in map.a (texel i's at a[2i], a[2i + 1]):
+// mean and variance, or m1 and m2 in fp32 mode. A bilinear lookup's row of taps is then one
+// 16-byte load and one cache line, where two planes took two of each (README "Technique
+// benchmark"); map.b stays empty.
 void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
     const float* d = map.dist.distance[f].data();
-    if (p.vsm.fp32)
-      filter_moments_fp32(d, face.width, face.height, p.blur, p.vsm.slope_moment, map.a[f], map.b[f]);
-    else
-      filter_moments_double(d, face.width, face.height, p.blur, p.vsm.slope_moment, map.a[f],
-                            map.b[f]);
+    if (p.vsm.fp32) {
+      // A measurement mode (the naive storage): filtered as two planes, then interleaved.
+      std::vector<float> m1, m2;
+      filter_moments_fp32(d, face.width, face.height, p.blur, p.vsm.slope_moment, m1, m2);
+      map.a[f].resize(2 * m1.size());
+      for (size_t i = 0; i < m1.size(); ++i) {
+        map.a[f][2 * i] = m1[i];
+        map.a[f][2 * i + 1] = m2[i];
+      }
+    } else {
+      filter_moments_double_interleaved(d, face.width, face.height, p.blur, p.vsm.slope_moment,
+                                        map.a[f]);
+    }
     if (p.vsm.maxdepth_eps > 0.0)
       filter_max(d, face.width, face.height, p.blur, map.max_depth[f], map.scratch);
   }
@@ -137,18 +150,22 @@ __attribute__((target("avx2"))) void vsm_batch_avx2(const VsmConsts& k, const fl
 }
 #endif
 
-// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then vsm_value's
-// arithmetic in AVX2 double (fp32 mode: vsm_value lane by lane).
+// 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel (and the
+// max-depth plane's when maxdepth_eps > 0), then vsm_value's arithmetic in AVX2 double (fp32
+// mode: vsm_value lane by lane).
 struct VsmBatch {
   static constexpr bool kEnabled = true;
   VsmConsts k;
+  Bilinear8x2Fn bilinear8x2;
   Bilinear8Fn bilinear8;
-  PlaneGather planes[3];  // a, b, max_depth
-  int n;
+  PlaneGather moments, max_depth;
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[3][4][8], fx[8], fy[8];
-    bilinear8(c, r, planes, n, v, fx, fy);
-    if (n < 3) std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread
+    bilinear8x2(c, r, moments, v, fx, fy);
+    if (k.maxdepth)
+      bilinear8(c, r, &max_depth, 1, v + 2, fx, fy);
+    else
+      std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread
 #if defined(__x86_64__)
     if (!k.fp32) {
       vsm_batch_avx2(k, v, fx, fy, r.depth, r.active, out);
@@ -183,16 +200,16 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     bilinear_indices(bl, f.width, idx);
     float A[4], B[4], M[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int i = 0; i < 4; ++i) {
-      A[i] = map.a[fi][idx[i]];
-      B[i] = map.b[fi][idx[i]];
+      A[i] = map.a[fi][2 * idx[i]];
+      B[i] = map.a[fi][2 * idx[i] + 1];
       if (k.maxdepth) M[i] = map.max_depth[fi][idx[i]];
     }
     return vsm_value(k, A, B, M, bl.fx, bl.fy, r.depth);
   };
-  VsmBatch batch{k, bilinear8_simd(), {plane_gather(map.a), plane_gather(map.b), plane_gather(map.max_depth)},
-                 k.maxdepth ? 3 : 2};
-  const bool gathers = batch.bilinear8 && batch.planes[0].ok && batch.planes[1].ok &&
-                       (!k.maxdepth || batch.planes[2].ok);
+  VsmBatch batch{k, bilinear8_interleaved2_simd(), bilinear8_simd(), plane_gather(map.a),
+                 plane_gather(map.max_depth)};
+  const bool gathers = batch.bilinear8x2 && batch.bilinear8 && batch.moments.ok &&
+                       (!k.maxdepth || batch.max_depth.ok);
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

@@ -279,5 +279,67 @@ TEST(LookupSimd, BilinearTapsMatchTheScalarTapsAtEveryEdge) {
   EXPECT_GT(clamped_right, 1000);
 }
 
+// The interleaved kernel (VSM's mean and variance in one plane) against the scalar taps: each
+// lane's 4 taps × 2 values are the clamped footprint's texels (bilinear_taps), read at 2·i and
+// 2·i + 1, with faces 1, 2 and 9 texels wide so the lane-by-lane fallback, the edge-clamped
+// lanes and the 16-byte loads all run.
+TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
+  const Bilinear8x2Fn bilinear8x2 = bilinear8_interleaved2_simd();
+  if (!bilinear8x2) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
+  const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
+  MapLookupConsts c;
+  std::vector<float> plane;
+  PlaneGather g;
+  for (int f = 0; f < 3; ++f) {
+    g.offset[f] = int32_t(plane.size());
+    for (int i = 0; i < widths[f] * heights[f]; ++i) {
+      plane.push_back(float(100 * f + i));          // value 0 of texel i
+      plane.push_back(float(5000 + 100 * f + i));   // value 1
+    }
+    c.width[f] = widths[f];
+    c.height[f] = heights[f];
+  }
+  g.base = plane.data();
+  g.ok = true;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-2.0f, 12.0f);
+  const float edges[] = {-3.0f, -0.5f, 0.0f, 0.49f, 0.5f, 0.51f, 1.0f, 1.5f, 2.5f, 8.5f, 9.0f, 9.5f, 20.0f};
+  int checked = 0, clamped_left = 0, clamped_right = 0, fast_batches = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Receivers8 r{};
+    bool narrow = false;
+    for (int k = 0; k < 8; ++k) {
+      r.face[k] = trial % 4 == 0 ? int32_t(rng() % 3) : 2;
+      r.sx[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+      r.sy[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+      r.active[k] = rng() % 5 ? -1 : 0;
+      narrow |= r.active[k] && r.face[k] == 0;
+    }
+    fast_batches += !narrow;
+    alignas(32) float values[2][4][8], fx[8], fy[8];
+    bilinear8x2(c, r, g, values, fx, fy);
+    for (int k = 0; k < 8; ++k) {
+      if (!r.active[k]) continue;
+      const int f = r.face[k];
+      const Bilinear b = bilinear_taps(vec2(r.sx[k], r.sy[k]), widths[f], heights[f]);
+      size_t idx[4];
+      bilinear_indices(b, widths[f], idx);
+      ASSERT_EQ(fx[k], b.fx);
+      ASSERT_EQ(fy[k], b.fy);
+      for (int v = 0; v < 2; ++v)
+        for (int t = 0; t < 4; ++t)
+          ASSERT_EQ(values[v][t][k], plane[size_t(g.offset[f]) + 2 * idx[t] + size_t(v)])
+              << "trial " << trial << " lane " << k << " value " << v << " tap " << t;
+      ++checked;
+      clamped_left += floor_int(r.sx[k] - 0.5f) < 0;
+      clamped_right += floor_int(r.sx[k] - 0.5f) >= widths[f] - 1;
+    }
+  }
+  EXPECT_GT(checked, 20000);
+  EXPECT_GT(clamped_left, 1000);
+  EXPECT_GT(clamped_right, 1000);
+  EXPECT_GT(fast_batches, 2000);
+}
+
 }  // namespace
 }  // namespace shadowlab

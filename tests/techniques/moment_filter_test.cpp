@@ -112,6 +112,19 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       filter_moments_double_oracle(d.data(), w, h, k, true, smean_o, svar_o);
       EXPECT_EQ(std::memcmp(smean.data(), smean_o.data(), d.size() * 4), 0) << "slope k " << k;
       EXPECT_EQ(std::memcmp(svar.data(), svar_o.data(), d.size() * 4), 0) << "slope k " << k;
+      // The interleaved storage of the VSM lookup holds the oracle's two planes, texel by texel
+      // (with and without the slope moment; k = 11 runs the runtime-width loops).
+      for (const bool slope : {false, true}) {
+        std::vector<float> mv;
+        filter_moments_double_interleaved(d.data(), w, h, k, slope, mv);
+        ASSERT_EQ(mv.size(), 2 * d.size());
+        const std::vector<float>& m_o = slope ? smean_o : mean_o;
+        const std::vector<float>& v_o = slope ? svar_o : var_o;
+        for (size_t i = 0; i < d.size(); ++i) {
+          ASSERT_EQ(std::memcmp(&mv[2 * i], &m_o[i], 4), 0) << "interleaved mean " << i << " k " << k;
+          ASSERT_EQ(std::memcmp(&mv[2 * i + 1], &v_o[i], 4), 0) << "interleaved var " << i << " k " << k;
+        }
+      }
       EXPECT_EQ(std::memcmp(esm.data(), esm_o.data(), d.size() * 4), 0) << w << "x" << h << " k " << k;
       std::vector<float> pm[4], pm_o[4];
       filter_power_moments(d.data(), w, h, k, pm);
@@ -124,6 +137,13 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
         filter_warped_moments_oracle(d.data(), w, h, k, 40.0, sign, wm_o, wv_o);
         EXPECT_EQ(std::memcmp(wm.data(), wm_o.data(), d.size() * 4), 0) << "evsm k " << k;
         EXPECT_EQ(std::memcmp(wv.data(), wv_o.data(), d.size() * 4), 0) << "evsm k " << k;
+        std::vector<float> wmv;  // EVSM's interleaved storage: the oracle's planes, texel by texel
+        filter_warped_moments_interleaved(d.data(), w, h, k, 40.0, sign, wmv);
+        ASSERT_EQ(wmv.size(), 2 * d.size());
+        for (size_t i = 0; i < d.size(); ++i) {
+          ASSERT_EQ(std::memcmp(&wmv[2 * i], &wm_o[i], 4), 0) << "evsm interleaved " << i;
+          ASSERT_EQ(std::memcmp(&wmv[2 * i + 1], &wv_o[i], 4), 0) << "evsm interleaved " << i;
+        }
       }
     }
   }
