@@ -70,18 +70,16 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
         pcf(c, p.pcf, pos, nrm, &g.covered[i], m, t, r);
       } else {
         receivers8(c, pos, nrm, &g.covered[i], r);
+        if constexpr (Batch::kEnabled) {
+          // The batch's lanes and the inactive lanes' masks in one vector step.
+          alignas(32) float vis[8];
+          batch(c, r, i, vis);
+          merge8(r, vis, m, t);
+          continue;
+        }
         for (int k = 0; k < 8; ++k) {
           m[k] = r.mask[k];
           if (t) t[k] = uint32_t(r.texel[k]);
-        }
-      }
-      if constexpr (Batch::kEnabled) {
-        if (!pcf) {
-          alignas(32) float vis[8];
-          batch(c, r, i, vis);
-          for (int k = 0; k < 8; ++k)
-            if (r.active[k]) m[k] = std::clamp(vis[k], 0.0f, 1.0f);
-          continue;
         }
       }
       for (int k = 0; k < 8; ++k) {

@@ -1,5 +1,6 @@
 #include "techniques/map_lookup_simd.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 
@@ -569,6 +570,27 @@ SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receive
 }
 
 }  // namespace
+#endif
+
+#ifdef SHADOWLAB_HAVE_X86
+SL_AVX2 void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels) {
+  const __m256 v = _mm256_load_ps(vis), zero = _mm256_setzero_ps(), one = set(1.0f);
+  // std::clamp(v, 0, 1): v < 0 ? 0 : (1 < v ? 1 : v).
+  const __m256 c = _mm256_blendv_ps(_mm256_blendv_ps(v, one, _mm256_cmp_ps(one, v, _CMP_LT_OQ)),
+                                    zero, _mm256_cmp_ps(v, zero, _CMP_LT_OQ));
+  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  _mm256_storeu_ps(mask, _mm256_blendv_ps(_mm256_load_ps(r.mask), c, active));
+  if (texels)
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(texels),
+                        _mm256_load_si256(reinterpret_cast<const __m256i*>(r.texel)));
+}
+#else
+void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels) {
+  for (int k = 0; k < 8; ++k) {
+    mask[k] = r.active[k] ? std::clamp(vis[k], 0.0f, 1.0f) : r.mask[k];
+    if (texels) texels[k] = uint32_t(r.texel[k]);
+  }
+}
 #endif
 
 Bilinear8x2Fn bilinear8_interleaved2_simd() {

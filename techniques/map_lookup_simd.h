@@ -97,6 +97,11 @@ using Bilinear8x2Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
 
 // The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 Bilinear8x2Fn bilinear8_interleaved2_simd();
+
+// The pixel loop's result of a batch: mask[k] = active lane ? std::clamp(vis[k], 0, 1) :
+// r.mask[k], texels[k] = r.texel[k] (when texels is given). Vector stores where the CPU has
+// AVX2 (only the AVX2 receivers make batches), with std::clamp's compare order (a NaN stays NaN).
+void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels);
 Receivers8Fn receivers8_simd();
 Depth1Fn depth1_simd();
 PcfFn pcf_simd();

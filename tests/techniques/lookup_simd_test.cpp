@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "core/cpu_features.h"
@@ -339,6 +340,32 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
   EXPECT_GT(clamped_left, 1000);
   EXPECT_GT(clamped_right, 1000);
   EXPECT_GT(fast_batches, 2000);
+}
+
+
+// merge8 is the pixel loop's per-lane rule: active lanes get std::clamp(vis, 0, 1) (a NaN stays
+// NaN, -0 stays -0), inactive lanes keep the receivers' mask; texels are copied.
+TEST(LookupSimd, Merge8IsThePixelLoopsClampPerLane) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const float vis_in[8] = {-1.0f, 0.5f, 2.0f, nan, -0.0f, 1.0f, inf, -inf};
+  for (int pattern = 0; pattern < 256; pattern += 37) {
+    Receivers8 r{};
+    alignas(32) float vis[8];
+    for (int k = 0; k < 8; ++k) {
+      vis[k] = vis_in[k];
+      r.active[k] = (pattern >> k) & 1 ? -1 : 0;
+      r.mask[k] = k % 2 ? 1.0f : 0.0f;
+      r.texel[k] = 100 + k;
+    }
+    float mask[8];
+    uint32_t texels[8];
+    merge8(r, vis, mask, texels);
+    for (int k = 0; k < 8; ++k) {
+      const float want = r.active[k] ? std::clamp(vis[k], 0.0f, 1.0f) : r.mask[k];
+      EXPECT_EQ(std::memcmp(&mask[k], &want, 4), 0) << "pattern " << pattern << " lane " << k;
+      EXPECT_EQ(texels[k], uint32_t(100 + k));
+    }
+  }
 }
 
 }  // namespace
