@@ -569,6 +569,81 @@ SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receive
   }
 }
 
+// The bilinear footprint of 8 receivers in one interleaved plane of four values per texel
+// (texel i's at plane.base[offset + 4i + 0..3]; moment_shadow_map.cpp's moments): one 32-byte
+// load per lane and row fetches both taps' four values, then an 8 × 8 transpose; the edge rule
+// and the fallback of bilinear8_interleaved2_avx2. values[v][tap][lane].
+SL_AVX2 void bilinear8_interleaved4_avx2(const MapLookupConsts& c, const Receivers8& r,
+                                         const PlaneGather& plane, float (*values)[4][8],
+                                         float* fx, float* fy) {
+  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
+  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const int active_bits = _mm256_movemask_ps(active);
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
+  const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
+  const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
+  const __m256i ix = floor_i(gx), iy = floor_i(gy);
+  _mm256_storeu_ps(fx, _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix)));
+  _mm256_storeu_ps(fy, _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy)));
+  const __m256i off = lane_i(plane.offset, face);
+  const __m256i r0 = _mm256_mullo_epi32(clamp_i(iy, zero, hm), w);
+  const __m256i r1 = _mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w);
+  if (_mm256_movemask_ps(_mm256_and_ps(active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
+      active_bits == 0) {
+    const __m256i x0 = clamp_i(ix, zero, wm), x1 = clamp_i(_mm256_add_epi32(ix, one), zero, wm);
+    alignas(32) int32_t at[4][8];
+    const __m256i idx[4] = {_mm256_add_epi32(r0, x0), _mm256_add_epi32(r0, x1),
+                            _mm256_add_epi32(r1, x0), _mm256_add_epi32(r1, x1)};
+    for (int t = 0; t < 4; ++t)
+      _mm256_store_si256(reinterpret_cast<__m256i*>(at[t]),
+                         _mm256_add_epi32(off, _mm256_slli_epi32(idx[t], 2)));
+    for (int t = 0; t < 4; ++t)
+      for (int k = 0; k < 8; ++k) {
+        const bool on = (active_bits >> k) & 1;
+        for (int v = 0; v < 4; ++v) values[v][t][k] = on ? plane.base[at[t][k] + v] : 0.0f;
+      }
+    return;
+  }
+  const __m256i wm2 = _mm256_sub_epi32(wm, one);
+  const __m256i start = clamp_i(ix, zero, wm2);
+  const __m256 left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
+  const __m256 right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
+  const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
+  const int first_active = __builtin_ctz(unsigned(active_bits));
+  for (int y = 0; y < 2; ++y) {
+    alignas(32) int32_t at[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at),
+                       _mm256_add_epi32(off, _mm256_slli_epi32(row[y], 2)));
+    for (int k = 0; k < 8; ++k)
+      if (!((active_bits >> k) & 1)) at[k] = at[first_active];
+    // R_k = lane k's 8 floats: the first tap's values 0..3, then the second tap's.
+    __m256 R[8];
+    for (int k = 0; k < 8; ++k) R[k] = _mm256_loadu_ps(plane.base + at[k]);
+    // 8 × 8 transpose: O[j][k] = R[k][j].
+    __m256 t[8], tt[8], O[8];
+    for (int q = 0; q < 4; ++q) {
+      t[2 * q] = _mm256_unpacklo_ps(R[2 * q], R[2 * q + 1]);
+      t[2 * q + 1] = _mm256_unpackhi_ps(R[2 * q], R[2 * q + 1]);
+    }
+    for (int q = 0; q < 2; ++q) {
+      tt[4 * q + 0] = _mm256_shuffle_ps(t[4 * q], t[4 * q + 2], 0x44);
+      tt[4 * q + 1] = _mm256_shuffle_ps(t[4 * q], t[4 * q + 2], 0xEE);
+      tt[4 * q + 2] = _mm256_shuffle_ps(t[4 * q + 1], t[4 * q + 3], 0x44);
+      tt[4 * q + 3] = _mm256_shuffle_ps(t[4 * q + 1], t[4 * q + 3], 0xEE);
+    }
+    for (int j = 0; j < 4; ++j) {
+      O[j] = _mm256_permute2f128_ps(tt[j], tt[4 + j], 0x20);
+      O[4 + j] = _mm256_permute2f128_ps(tt[j], tt[4 + j], 0x31);
+    }
+    for (int v = 0; v < 4; ++v) {
+      _mm256_storeu_ps(values[v][2 * y], _mm256_and_ps(_mm256_blendv_ps(O[v], O[4 + v], right), active));
+      _mm256_storeu_ps(values[v][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(O[4 + v], O[v], left), active));
+    }
+  }
+}
+
 }  // namespace
 #endif
 
@@ -592,6 +667,13 @@ void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels
   }
 }
 #endif
+
+Bilinear8x2Fn bilinear8_interleaved4_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return bilinear8_interleaved4_avx2;
+#endif
+  return nullptr;
+}
 
 Bilinear8x2Fn bilinear8_interleaved2_simd() {
 #ifdef SHADOWLAB_HAVE_X86

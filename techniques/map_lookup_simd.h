@@ -89,14 +89,16 @@ using Bilinear8Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
                              const PlaneGather* planes, int n, float (*values)[4][8], float* fx,
                              float* fy);
 
-// The same footprint in one plane holding two values per texel, interleaved (texel i's at
-// plane.base[offset[face] + 2i] and [+ 2i + 1]): values[value][tap][lane], value 0 or 1.
+// The same footprint in one plane holding two (or four) values per texel, interleaved (texel i's
+// at plane.base[offset[face] + 2i] and [+ 2i + 1]): values[value][tap][lane], value 0 or 1.
 using Bilinear8x2Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
                                const PlaneGather& plane, float (*values)[4][8], float* fx,
                                float* fy);
 
 // The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 Bilinear8x2Fn bilinear8_interleaved2_simd();
+// The same for four values per texel (texel i's at offset + 4i + 0..3): values[0..3][tap][lane].
+Bilinear8x2Fn bilinear8_interleaved4_simd();
 
 // The pixel loop's result of a batch: mask[k] = active lane ? std::clamp(vis[k], 0, 1) :
 // r.mask[k], texels[k] = r.texel[k] (when texels is given). Vector stores where the CPU has

@@ -264,6 +264,12 @@ SL_ROW_CLONES void vsm_out_k(const double* const* rows, int w, double inv, float
 // out[2x] = a[x], out[2x + 1] = b[x]: two rows into one interleaved row (a zip the compiler
 // vectorizes; the strided stores of writing the interleaved row directly did not, and made the
 // VSM filter ~25 % slower).
+// out[4x + c] = rows[c·w + x] for c = 0..3: four rows into one interleaved row.
+SL_ROW_CLONES void interleave4_row(const float* rows, int w, float* out) {
+  for (int x = 0; x < w; ++x)
+    for (int c = 0; c < 4; ++c) out[4 * x + c] = rows[size_t(c) * size_t(w) + size_t(x)];
+}
+
 SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* out) {
   for (int x = 0; x < w; ++x) {
     out[2 * x] = a[x];
@@ -568,10 +574,15 @@ void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double
 
 namespace {
 
+// Row y of plane c goes to row(c, y, scratch): a row of the plane itself, or (interleaving)
+// scratch of w floats that done(y, scratch_rows) interleaves afterwards.
 void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
-                   std::vector<float>* out) {
+                   std::vector<float>* out, std::vector<float>* interleaved) {
   const size_t n = size_t(w) * size_t(h);
-  for (int c = 0; c < 4; ++c) out[c].resize(n);
+  if (interleaved)
+    interleaved->resize(4 * n);
+  else
+    for (int c = 0; c < 4; ++c) out[c].resize(n);
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
@@ -579,7 +590,14 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
     power_row(dist + size_t(y) * size_t(w), w, ew, ext + r);
     for (int c = 0; c < 4; ++c) extend_row(ext + size_t(c) * ew, w, r);
   };
-  auto row_of = [&](int c, int y) { return out[c].data() + size_t(y) * size_t(w); };
+  // Plane c's row y: in the plane, or (interleaving) in tmp's c-th row of w floats.
+  auto row_of = [&](int c, int y, float* tmp) {
+    return interleaved ? tmp + size_t(c) * size_t(w) : out[c].data() + size_t(y) * size_t(w);
+  };
+  auto finish = [&](int y, const float* tmp) {
+    if (interleaved)
+      interleave4_row(tmp, w, interleaved->data() + 4 * size_t(y) * size_t(w));
+  };
   if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
@@ -588,8 +606,10 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
               make_row(y, ext);
               for (int c = 0; c < 4; ++c) hsum_k<K>(ext + size_t(c) * ew, w, dst[c]);
             },
-            [&](int y, const double* const* win, double*) {
-              for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, w, inv, row_of(c, y));
+            [&](int y, const double* const* win, double* scratch) {
+              float* const tmp = reinterpret_cast<float*>(scratch);  // 4·w of its 10·w floats
+              for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, w, inv, row_of(c, y, tmp));
+              finish(y, tmp);
             });
       }))
     return;
@@ -600,22 +620,30 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
         for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, w, k, dst[c]);
       },
       [&](int y, const double* const* win, double* m) {
+        // m: w doubles of sums, then 4·w floats (2·w doubles) of interleaving rows.
+        float* const tmp = reinterpret_cast<float*>(m + size_t(w));
         for (int c = 0; c < 4; ++c) {
           vsum_rows(win + c * k, w, k, inv, m);
-          float_row(m, w, row_of(c, y));
+          float_row(m, w, row_of(c, y, tmp));
         }
+        finish(y, tmp);
       });
 }
 
 }  // namespace
 
 void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out) {
-  power_moments(dist, w, h, k, true, out);
+  power_moments(dist, w, h, k, true, out, nullptr);
+}
+
+void filter_power_moments_interleaved(const float* dist, int w, int h, int k,
+                                      std::vector<float>& moments) {
+  power_moments(dist, w, h, k, true, nullptr, &moments);
 }
 
 void filter_power_moments_oracle(const float* dist, int w, int h, int k,
                                  std::vector<float>* out) {
-  power_moments(dist, w, h, k, false, out);
+  power_moments(dist, w, h, k, false, out, nullptr);
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,

@@ -56,6 +56,10 @@ void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, d
 // MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
 // "nothing seen" as 1), box-filtered in double and stored as floats in out[0..3].
 void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out);
+// filter_power_moments' values in one interleaved plane: texel i's E[d^(c+1)] at moments[4i + c]
+// (the MSM lookup's storage: one 32-byte load per tap row fetches both taps' four moments).
+void filter_power_moments_interleaved(const float* dist, int w, int h, int k,
+                                      std::vector<float>& moments);
 
 // The filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and

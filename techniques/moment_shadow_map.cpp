@@ -35,14 +35,15 @@ std::string keys_text(const MapParams& p) {
                      p.msm.hausdorff ? "hausdorff" : "hamburger", p.msm.alpha);
 }
 
-// Texels [0, n) of the four planes through the 16-bit store: each texel's moments encoded
+// Texels [0, n) of the interleaved moments (texel i's at m[4i + 0..3]) through the 16-bit
+// store: each texel's moments encoded
 // (msm_encode16), clamped to [0, 1] and rounded to the nearest multiple of 1/65535 (a UNORM16
 // channel, ties up), kept as the float of that value. Compiled for AVX-512, AVX2 and baseline
 // (floor is one instruction from SSE4.1 on; exact, so every clone gives the same bits).
-__attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(size_t n, float* __restrict m0, float* __restrict m1, float* __restrict m2,
-                float* __restrict m3) {
+__attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(size_t n,
+                                                                             float* __restrict mv) {
   for (size_t i = 0; i < n; ++i) {
-    const double m[4] = {m0[i], m1[i], m2[i], m3[i]};
+    const double m[4] = {mv[4 * i], mv[4 * i + 1], mv[4 * i + 2], mv[4 * i + 3]};
     double q[4];
     msm_encode16(m, q);
     float r[4];
@@ -50,27 +51,23 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(siz
       const double v = q[c] < 0.0 ? 0.0 : (q[c] > 1.0 ? 1.0 : q[c]);
       r[c] = float(std::floor(v * 65535.0 + 0.5) / 65535.0);
     }
-    m0[i] = r[0];
-    m1[i] = r[1];
-    m2[i] = r[2];
-    m3[i] = r[3];
+    for (int c = 0; c < 4; ++c) mv[4 * i + c] = r[c];
   }
 }
 
+// The four moments of a texel are stored interleaved in map.a (texel i's at a[4i + 0..3]): a
+// bilinear lookup's row of taps is one 32-byte load and one cache line, where four planes took
+// four of each (README "Technique benchmark"); map.b–d stay empty.
 void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
-    std::vector<float>* planes[4] = {&map.a[f], &map.b[f], &map.c[f], &map.d[f]};
-    std::vector<float> out[4];
-    for (int i = 0; i < 4; ++i) out[i].swap(*planes[i]);  // reuse the planes' memory
-    filter_power_moments(map.dist.distance[f].data(), face.width, face.height, p.blur, out);
-    for (int i = 0; i < 4; ++i) out[i].swap(*planes[i]);
+    filter_power_moments_interleaved(map.dist.distance[f].data(), face.width, face.height,
+                                     p.blur, map.a[f]);
     if (!p.msm.quantize16) continue;
-    const size_t n = map.a[f].size();
-    parallel_for_chunks(n, 16384, [&](size_t b, size_t e) {
-      quantize16(e - b, &map.a[f][b], &map.b[f][b], &map.c[f][b], &map.d[f][b]);
-    });
+    const size_t n = map.a[f].size() / 4;
+    float* const mv = map.a[f].data();
+    parallel_for_chunks(n, 16384, [&](size_t b, size_t e) { quantize16(e - b, mv + 4 * b); });
   }
 }
 
@@ -131,16 +128,16 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const fl
 }
 #endif
 
-// 8 lanes at once: the planes' bilinear taps gathered by the AVX2 kernel, then msm_value's
-// arithmetic in AVX2 double. Used only where the AVX2 kernels exist.
+// 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
+// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist.
 struct MsmBatch {
   static constexpr bool kEnabled = true;
   MsmConsts k;
-  Bilinear8Fn bilinear8;
-  PlaneGather planes[4];  // a, b, c, d: moments 1 to 4
+  Bilinear8x2Fn bilinear8x4;
+  PlaneGather moments;  // a: moments 1 to 4 per texel
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
-    bilinear8(c, r, planes, 4, v, fx, fy);
+    bilinear8x4(c, r, moments, v, fx, fy);
 #if defined(__x86_64__)
     msm_batch_avx2(k, v, fx, fy, r.depth, out);
 #endif
@@ -158,19 +155,12 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     size_t idx[4];
     bilinear_indices(bl, f.width, idx);
     float P[4][4];
-    for (int i = 0; i < 4; ++i) {
-      P[0][i] = map.a[fi][idx[i]];
-      P[1][i] = map.b[fi][idx[i]];
-      P[2][i] = map.c[fi][idx[i]];
-      P[3][i] = map.d[fi][idx[i]];
-    }
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) P[j][i] = map.a[fi][4 * idx[i] + size_t(j)];
     return msm_value(k, P, bl.fx, bl.fy, r.depth);
   };
-  MsmBatch batch{k, bilinear8_simd(),
-                 {plane_gather(map.a), plane_gather(map.b), plane_gather(map.c),
-                  plane_gather(map.d)}};
-  bool gathers = batch.bilinear8 != nullptr;
-  for (const PlaneGather& pg : batch.planes) gathers = gathers && pg.ok;
+  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a)};
+  const bool gathers = batch.bilinear8x4 != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

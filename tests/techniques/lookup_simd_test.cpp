@@ -280,23 +280,19 @@ TEST(LookupSimd, BilinearTapsMatchTheScalarTapsAtEveryEdge) {
   EXPECT_GT(clamped_right, 1000);
 }
 
-// The interleaved kernel (VSM's mean and variance in one plane) against the scalar taps: each
-// lane's 4 taps × 2 values are the clamped footprint's texels (bilinear_taps), read at 2·i and
-// 2·i + 1, with faces 1, 2 and 9 texels wide so the lane-by-lane fallback, the edge-clamped
-// lanes and the 16-byte loads all run.
-TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
-  const Bilinear8x2Fn bilinear8x2 = bilinear8_interleaved2_simd();
-  if (!bilinear8x2) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
+// The interleaved kernels (VSM's and EVSM's mean and variance, N = 2; MSM's four moments,
+// N = 4) against the scalar taps: each lane's 4 taps × N values are the clamped footprint's
+// texels (bilinear_taps), read at N·i + v, with faces 1, 2 and 9 texels wide so the
+// lane-by-lane fallback, the edge-clamped lanes and the wide loads all run.
+void check_interleaved_taps(Bilinear8x2Fn kernel, int n_values) {
   const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
   MapLookupConsts c;
   std::vector<float> plane;
   PlaneGather g;
   for (int f = 0; f < 3; ++f) {
     g.offset[f] = int32_t(plane.size());
-    for (int i = 0; i < widths[f] * heights[f]; ++i) {
-      plane.push_back(float(100 * f + i));          // value 0 of texel i
-      plane.push_back(float(5000 + 100 * f + i));   // value 1
-    }
+    for (int i = 0; i < widths[f] * heights[f]; ++i)
+      for (int v = 0; v < n_values; ++v) plane.push_back(float(5000 * v + 100 * f + i));
     c.width[f] = widths[f];
     c.height[f] = heights[f];
   }
@@ -317,8 +313,8 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
       narrow |= r.active[k] && r.face[k] == 0;
     }
     fast_batches += !narrow;
-    alignas(32) float values[2][4][8], fx[8], fy[8];
-    bilinear8x2(c, r, g, values, fx, fy);
+    alignas(32) float values[4][4][8], fx[8], fy[8];
+    kernel(c, r, g, values, fx, fy);
     for (int k = 0; k < 8; ++k) {
       if (!r.active[k]) continue;
       const int f = r.face[k];
@@ -327,10 +323,11 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
       bilinear_indices(b, widths[f], idx);
       ASSERT_EQ(fx[k], b.fx);
       ASSERT_EQ(fy[k], b.fy);
-      for (int v = 0; v < 2; ++v)
+      for (int v = 0; v < n_values; ++v)
         for (int t = 0; t < 4; ++t)
-          ASSERT_EQ(values[v][t][k], plane[size_t(g.offset[f]) + 2 * idx[t] + size_t(v)])
-              << "trial " << trial << " lane " << k << " value " << v << " tap " << t;
+          ASSERT_EQ(values[v][t][k], plane[size_t(g.offset[f]) + size_t(n_values) * idx[t] + size_t(v)])
+              << n_values << " values, trial " << trial << " lane " << k << " value " << v
+              << " tap " << t;
       ++checked;
       clamped_left += floor_int(r.sx[k] - 0.5f) < 0;
       clamped_right += floor_int(r.sx[k] - 0.5f) >= widths[f] - 1;
@@ -342,6 +339,12 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
   EXPECT_GT(fast_batches, 2000);
 }
 
+TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
+  const Bilinear8x2Fn two = bilinear8_interleaved2_simd(), four = bilinear8_interleaved4_simd();
+  if (!two || !four) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
+  check_interleaved_taps(two, 2);
+  check_interleaved_taps(four, 4);
+}
 
 // merge8 is the pixel loop's per-lane rule: active lanes get std::clamp(vis, 0, 1) (a NaN stays
 // NaN, -0 stays -0), inactive lanes keep the receivers' mask; texels are copied.

@@ -131,6 +131,13 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       filter_power_moments_oracle(d.data(), w, h, k, pm_o);
       for (int c = 0; c < 4; ++c)
         EXPECT_EQ(std::memcmp(pm[c].data(), pm_o[c].data(), d.size() * 4), 0) << "msm " << c << " k " << k;
+      std::vector<float> pmi;  // MSM's interleaved storage: the oracle's planes, texel by texel
+      filter_power_moments_interleaved(d.data(), w, h, k, pmi);
+      ASSERT_EQ(pmi.size(), 4 * d.size());
+      for (size_t i = 0; i < d.size(); ++i)
+        for (int c = 0; c < 4; ++c)
+          ASSERT_EQ(std::memcmp(&pmi[4 * i + size_t(c)], &pm_o[c][i], 4), 0)
+              << "msm interleaved " << i << " moment " << c << " k " << k;
       for (const double sign : {1.0, -1.0}) {
         std::vector<float> wm, wv, wm_o, wv_o;
         filter_warped_moments(d.data(), w, h, k, 40.0, sign, wm, wv);
