@@ -51,19 +51,22 @@ std::string keys_text(const MapParams& p) {
                      p.blur, e.moments, e.c_pos, e.c_neg, e.min_variance, e.bleed);
 }
 
-// Each warp's mean and variance are stored interleaved per texel, as VSM's (variance_map.cpp):
-// the positive warp's in map.a (texel i's at a[2i], a[2i + 1]), the negative warp's in map.c;
-// map.b and map.d stay empty.
+// A texel's moments are stored interleaved in map.a, as VSM's and MSM's (variance_map.cpp): the
+// positive warp's mean and variance, then (4 moments) the negative warp's, texel i's at
+// a[S·i + 0..S−1] with S = 2 or 4; one load per tap row fetches them all. map.b–d stay empty.
+int evsm_stride(const MapParams& p) { return p.evsm.moments == 4 ? 4 : 2; }
+
 void filter(const MapParams& p, LightMap& map) {
+  const int s = evsm_stride(p);
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
     const float* d = map.dist.distance[f].data();
-    filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0,
-                                      map.a[f]);
-    if (p.evsm.moments == 4)
+    filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0, s,
+                                      0, map.a[f]);
+    if (s == 4)
       filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_neg, -1.0,
-                                        map.c[f]);
+                                        4, 2, map.a[f]);
   }
 }
 
@@ -149,12 +152,11 @@ SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const 
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
-  Bilinear8x2Fn bilinear8x2;
-  PlaneGather warps[2];  // a (positive warp), c (negative warp)
+  Bilinear8x2Fn taps;  // the 2- or 4-value kernel
+  PlaneGather moments;  // a
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
-    bilinear8x2(c, r, warps[0], v, fx, fy);
-    if (k.four) bilinear8x2(c, r, warps[1], v + 2, fx, fy);
+    taps(c, r, moments, v, fx, fy);
 #if defined(__x86_64__)
     evsm_batch_avx2(k, v, fx, fy, r.depth, out);
 #endif
@@ -168,6 +170,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   const EvsmKeys& e = p.evsm;
   const EvsmConsts k{e.c_pos, e.c_neg, e.min_variance * inv_far * inv_far, e.bleed,
                      e.moments == 4};
+  const int s = evsm_stride(p);
   auto visibility = [&](const Receiver& r) {
     const size_t fi = size_t(r.face);
     const LightFace& f = L.faces[fi];
@@ -176,18 +179,13 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     bilinear_indices(bl, f.width, idx);
     float P[4][4] = {};
     for (int i = 0; i < 4; ++i) {
-      P[0][i] = map.a[fi][2 * idx[i]];
-      P[1][i] = map.a[fi][2 * idx[i] + 1];
-      if (k.four) {
-        P[2][i] = map.c[fi][2 * idx[i]];
-        P[3][i] = map.c[fi][2 * idx[i] + 1];
-      }
+      for (int j = 0; j < s; ++j) P[j][i] = map.a[fi][size_t(s) * idx[i] + size_t(j)];
     }
     return evsm_value(k, P[0], P[1], P[2], P[3], bl.fx, bl.fy, r.depth);
   };
-  EvsmBatch batch{k, bilinear8_interleaved2_simd(), {plane_gather(map.a), plane_gather(map.c)}};
-  const bool gathers =
-      batch.bilinear8x2 != nullptr && batch.warps[0].ok && (!k.four || batch.warps[1].ok);
+  EvsmBatch batch{k, k.four ? bilinear8_interleaved4_simd() : bilinear8_interleaved2_simd(),
+                  plane_gather(map.a)};
+  const bool gathers = batch.taps != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

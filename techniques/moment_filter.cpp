@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
 
@@ -401,7 +402,8 @@ struct MeanVarOut {
 };
 
 // Row y's mean and variance floats through write(mean_row, var_row): straight into the planes,
-// or (stride 2) into `scratch` (2·w floats) and then interleaved.
+// or (stride 2 or 4) into `scratch` (2·w floats) and then interleaved (stride 4: into two of each
+// texel's four slots; EVSM4 writes its two warps' pairs side by side).
 template <class Write>
 void write_mean_var(const MeanVarOut& o, int w, int y, float* scratch, const Write& write) {
   const size_t at = size_t(y) * size_t(w) * size_t(o.stride);
@@ -410,7 +412,15 @@ void write_mean_var(const MeanVarOut& o, int w, int y, float* scratch, const Wri
     return;
   }
   write(scratch, scratch + w);
-  interleave_row(scratch, scratch + w, w, o.mean + at);
+  if (o.stride == 2) {
+    interleave_row(scratch, scratch + w, w, o.mean + at);
+    return;
+  }
+  float* const row = o.mean + at;
+  for (int x = 0; x < w; ++x) {
+    row[size_t(o.stride) * size_t(x)] = scratch[x];
+    row[size_t(o.stride) * size_t(x) + 1] = scratch[size_t(w) + size_t(x)];
+  }
 }
 
 // Filtered mean and centred variance of a two-plane row maker: make_row(y, ext) fills plane 0
@@ -562,8 +572,13 @@ void filter_warped_moments(const float* dist, int w, int h, int k, double c, dou
 }
 
 void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, double c,
-                                       double sign, std::vector<float>& mean_variance) {
-  warped_moments(dist, w, h, k, c, sign, true, interleaved_out(w, h, mean_variance));
+                                       double sign, int stride, int first,
+                                       std::vector<float>& out) {
+  SL_CHECK((stride == 2 && first == 0) || (stride == 4 && (first == 0 || first == 2)));
+  const size_t n = size_t(w) * size_t(h) * size_t(stride);
+  if (out.size() != n) out.resize(n);
+  float* const base = out.data() + first;
+  warped_moments(dist, w, h, k, c, sign, true, {base, base + 1, stride});
 }
 
 void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,

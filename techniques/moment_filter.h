@@ -48,10 +48,13 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 // filter_moments_double. |v| <= e^c and v² <= e^(2c): finite in float for c <= 44.36.
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                            std::vector<float>& mean, std::vector<float>& variance);
-// filter_warped_moments' values in one interleaved plane (texel i's mean at [2i], variance at
-// [2i + 1]), the EVSM lookup's storage, as filter_moments_double_interleaved for VSM.
+// filter_warped_moments' values in an interleaved plane of `stride` floats per texel (texel i's
+// mean at out[stride·i + first], variance at + 1; stride 2 with first 0, or stride 4 with first 0
+// or 2, so EVSM4 keeps both warps' pairs of a texel in 16 bytes), the EVSM lookup's storage.
+// out is resized to stride·w·h floats when its size differs (the other slots are kept).
 void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, double c,
-                                       double sign, std::vector<float>& mean_variance);
+                                       double sign, int stride, int first,
+                                       std::vector<float>& out);
 
 // MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
 // "nothing seen" as 1), box-filtered in double and stored as floats in out[0..3].

@@ -144,12 +144,20 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
         filter_warped_moments_oracle(d.data(), w, h, k, 40.0, sign, wm_o, wv_o);
         EXPECT_EQ(std::memcmp(wm.data(), wm_o.data(), d.size() * 4), 0) << "evsm k " << k;
         EXPECT_EQ(std::memcmp(wv.data(), wv_o.data(), d.size() * 4), 0) << "evsm k " << k;
-        std::vector<float> wmv;  // EVSM's interleaved storage: the oracle's planes, texel by texel
-        filter_warped_moments_interleaved(d.data(), w, h, k, 40.0, sign, wmv);
-        ASSERT_EQ(wmv.size(), 2 * d.size());
-        for (size_t i = 0; i < d.size(); ++i) {
-          ASSERT_EQ(std::memcmp(&wmv[2 * i], &wm_o[i], 4), 0) << "evsm interleaved " << i;
-          ASSERT_EQ(std::memcmp(&wmv[2 * i + 1], &wv_o[i], 4), 0) << "evsm interleaved " << i;
+        // EVSM's interleaved storage: the oracle's planes, texel by texel, at stride 2 and in
+        // both halves of stride 4 (the other half's slots left as they were: here 7).
+        for (const auto& [stride, first] : {std::pair{2, 0}, std::pair{4, 0}, std::pair{4, 2}}) {
+          std::vector<float> wmv(size_t(stride) * d.size(), 7.0f);
+          filter_warped_moments_interleaved(d.data(), w, h, k, 40.0, sign, stride, first, wmv);
+          ASSERT_EQ(wmv.size(), size_t(stride) * d.size());
+          for (size_t i = 0; i < d.size(); ++i) {
+            const size_t at = size_t(stride) * i + size_t(first);
+            ASSERT_EQ(std::memcmp(&wmv[at], &wm_o[i], 4), 0) << "evsm interleaved " << i;
+            ASSERT_EQ(std::memcmp(&wmv[at + 1], &wv_o[i], 4), 0) << "evsm interleaved " << i;
+            if (stride == 4) {
+              ASSERT_EQ(wmv[size_t(stride) * i + size_t(2 - first)], 7.0f);
+            }
+          }
         }
       }
     }
