@@ -265,14 +265,32 @@ SL_ROW_CLONES void vsm_out_k(const double* const* rows, int w, double inv, float
 // out[2x] = a[x], out[2x + 1] = b[x]: two rows into one interleaved row (a zip the compiler
 // vectorizes; the strided stores of writing the interleaved row directly did not, and made the
 // VSM filter ~25 % slower).
+// Texels to write one by one before out + S·x starts a 64-byte line (S floats per texel), so the
+// vector stores after them do not straddle cache lines: large vectors' storage is 16-byte
+// aligned here (glibc's mmap chunks), and a 64-byte store across two lines costs about two.
+inline int texels_to_line(const float* out, int floats_per_texel, int w) {
+  const uintptr_t bytes = (64 - (reinterpret_cast<uintptr_t>(out) & 63)) & 63;
+  const uintptr_t texel_bytes = uintptr_t(floats_per_texel) * 4;
+  if (bytes % texel_bytes != 0) return 0;
+  return std::min(w, int(bytes / texel_bytes));
+}
+
 // out[4x + c] = rows[c·w + x] for c = 0..3: four rows into one interleaved row.
 SL_ROW_CLONES void interleave4_row(const float* rows, int w, float* out) {
-  for (int x = 0; x < w; ++x)
+  const int head = texels_to_line(out, 4, w);
+  for (int x = 0; x < head; ++x)
+    for (int c = 0; c < 4; ++c) out[4 * x + c] = rows[size_t(c) * size_t(w) + size_t(x)];
+  for (int x = head; x < w; ++x)
     for (int c = 0; c < 4; ++c) out[4 * x + c] = rows[size_t(c) * size_t(w) + size_t(x)];
 }
 
 SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* out) {
-  for (int x = 0; x < w; ++x) {
+  const int head = texels_to_line(out, 2, w);
+  for (int x = 0; x < head; ++x) {
+    out[2 * x] = a[x];
+    out[2 * x + 1] = b[x];
+  }
+  for (int x = head; x < w; ++x) {
     out[2 * x] = a[x];
     out[2 * x + 1] = b[x];
   }
