@@ -53,7 +53,7 @@ std::string keys_text(const MapParams& p) {
 
 // A texel's moments are stored interleaved in map.a, as VSM's and MSM's (variance_map.cpp): the
 // positive warp's mean and variance, then (4 moments) the negative warp's, texel i's at
-// a[S·i + 0..S−1] with S = 2 or 4; one load per tap row fetches them all. map.b–d stay empty.
+// a[S·i + 0..S−1] with S = 2 or 4; one load per tap row fetches them all.
 int evsm_stride(const MapParams& p) { return p.evsm.moments == 4 ? 4 : 2; }
 
 void filter(const MapParams& p, LightMap& map) {

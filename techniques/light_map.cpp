@@ -36,10 +36,7 @@ void render_light_map(const Scene& scene, const MapParams& p, const std::vector<
 void filter_light_map(const MapParams& p, LightMap& map) {
   const size_t nf = map.layout.faces.size();
   map.a.resize(nf);
-  map.b.resize(nf);
   map.max_depth.resize(nf);
-  map.c.resize(nf);
-  map.d.resize(nf);
   map_filter_ops(p.filter).filter(p, map);
 }
 

@@ -22,15 +22,15 @@
 namespace shadowlab {
 
 // A built map: the layout, the rendered distances and, for filtering techniques, the filtered
-// planes per face (VSM: mean + variance, or m1 + m2 in fp32 mode, and the max depth when
-// maxdepth_eps > 0; ESM: the log-space occluder term c·z in plane a; EVSM: the positive warp's
-// mean + variance in a, b and the negative warp's in c, d; MSM: the moments E[d]…E[d⁴] in a–d).
+// values per face, interleaved per texel in plane a so that one load fetches all of a tap's
+// values (README "Technique benchmark"): VSM: mean, variance (or m1, m2 in fp32 mode), texel i's
+// at a[2i], a[2i + 1], and the max depth in its own plane when maxdepth_eps > 0; ESM: the
+// log-space occluder term c·z, a[i]; EVSM: the positive warp's mean and variance, then with 4
+// moments the negative warp's, a[S·i + 0..S−1] with S = 2 or 4; MSM: E[d]…E[d⁴], a[4i + 0..3].
 struct LightMap {
   FaceLayout layout;
   FaceDistances dist;
-  std::vector<std::vector<float>> a, b, max_depth;
-  std::vector<std::vector<float>> c, d;  // evsm with 4 moments: the negative warp's mean,
-                                         // variance; msm: the third and fourth moments
+  std::vector<std::vector<float>> a, max_depth;
   FilterScratch scratch;  // the max filter's, reused by every face and every rebuild
 };
 

@@ -73,7 +73,7 @@ struct Faces8 {
 using Faces8Fn = Faces8 (*)(const MapLookupConsts& c, int cross_pcf, const float* pos,
                             const float* nrm, const uint8_t* covered, Receivers8& rest);
 
-// Per-face float planes (a filter's map.a, map.b, …) seen from one base with 32-bit offsets in
+// Per-face float planes (a filter's map.a, map.max_depth, a layout's distances) seen from one base with 32-bit offsets in
 // floats, like the distances in MapLookupConsts; ok is false when they lie too far apart.
 struct PlaneGather {
   const float* base = nullptr;
