@@ -1,6 +1,7 @@
 #include "techniques/faces_needed.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/parallel.h"
@@ -91,12 +92,19 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
   const int bx = g.blocks_x(), by = g.blocks_y(), B = kGBufferBlock;
   const bool cross = p.filter == MapFilter::Depth && p.seams == SeamMode::Cross && p.pcf > 1;
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
+  const size_t nf = layout.faces.size();
+  const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
   std::vector<uint32_t> flags(size_t(by), 0);
+  // Faces found so far by any thread: a block whose face is among them needs no walk, and once
+  // every face is found the remaining blocks are skipped. The answer is the union either way, so
+  // it does not depend on which thread found what first.
+  std::atomic<uint32_t> found{known};
   parallel_for_chunks(size_t(by), 1, [&](size_t r0, size_t r1) {
+    uint32_t f = known;
     for (size_t r = r0; r < r1; ++r) {
-      uint32_t f = known;
       size_t unused = 0;
-      for (int b = 0; b < bx; ++b) {
+      f |= found.load(std::memory_order_relaxed);
+      for (int b = 0; b < bx && f != all; ++b) {
         const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
         if (box.empty()) continue;
         // The normal offset moves a lookup point at most normal × plane texel × distance
@@ -113,8 +121,9 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
         for (int y = y0; y < y1; ++y) {
           const size_t i = size_t(y) * size_t(g.width);
           scan(i + size_t(x0), i + size_t(x1), f, unused);
-          if (face >= 0 && ((f >> face) & 1u)) break;
+          if ((face >= 0 && ((f >> face) & 1u)) || f == all) break;
         }
+        f |= found.fetch_or(f, std::memory_order_relaxed);
       }
       flags[r] = f;
     }
