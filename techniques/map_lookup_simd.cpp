@@ -499,6 +499,7 @@ SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
 }
 
 }  // namespace
+#undef SL_AVX2
 #endif
 
 Receivers8Fn receivers8_simd() {
@@ -537,3 +538,6 @@ PcfFn pcf_simd() {
 }
 
 }  // namespace shadowlab
+
+// File-local: a unity build compiles the next file in the same translation unit.
+#undef SHADOWLAB_HAVE_X86
