@@ -107,3 +107,6 @@ const char* depth_kernel_name() {
 }
 
 }  // namespace shadowlab
+
+// File-local: a unity build compiles the next file in the same translation unit.
+#undef SHADOWLAB_HAVE_X86

@@ -126,3 +126,6 @@ ResolveRun8Fn resolve_run8_simd() {
 }
 
 }  // namespace shadowlab
+
+// File-local: a unity build compiles the next file in the same translation unit.
+#undef SHADOWLAB_HAVE_X86

@@ -10,7 +10,9 @@
 #include "core/texture.h"
 
 namespace shadowlab {
-namespace {
+// Named, not anonymous: EmbreeScene::Impl (external linkage) holds ErrorState and AlphaGeometry
+// members, which GCC flags (-Wsubobject-linkage) outside the main file, as in a unity build.
+namespace embree_scene_detail {
 
 // First error reported by the device callback. Embree calls the callback from whichever thread
 // hit the error and the callback cannot throw through C code, so the error is recorded here and
@@ -58,16 +60,18 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-}  // namespace
+}  // namespace embree_scene_detail
 
 struct EmbreeScene::Impl {
-  ErrorState errors;  // declared first: must outlive the device that points to it
+  // Declared first: must outlive the device that points to it.
+  embree_scene_detail::ErrorState errors;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   float scale = 0.0f;
   size_t meshes = 0;
   std::vector<ImageF> textures;  // copies of the referenced alpha textures (index = scene's)
-  std::vector<std::unique_ptr<AlphaGeometry>> alpha;  // stable addresses for Embree
+  // Stable addresses for Embree.
+  std::vector<std::unique_ptr<embree_scene_detail::AlphaGeometry>> alpha;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -93,7 +97,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   if (!im.device)
     throw EmbreeError(int(rtcGetDeviceError(nullptr)), "could not create an Embree device");
   // Registered right after creation so no later error goes unnoticed.
-  rtcSetDeviceErrorFunction(im.device, on_device_error, &im.errors);
+  rtcSetDeviceErrorFunction(im.device, embree_scene_detail::on_device_error, &im.errors);
 
   im.scene = rtcNewScene(im.device);
   im.throw_if_error("creating the scene");
@@ -151,14 +155,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     if (mat.alpha_texture >= 0) {
       const size_t t = size_t(mat.alpha_texture);
       if (im.textures[t].empty()) im.textures[t] = scene.textures[t];
-      auto g = std::make_unique<AlphaGeometry>();
+      auto g = std::make_unique<embree_scene_detail::AlphaGeometry>();
       g->texture = &im.textures[t];
       g->cutoff = mat.alpha_cutoff;
       g->indices = mesh.indices;
       g->uvs = mesh.uvs;
       rtcSetGeometryUserData(geom, g.get());
-      rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
-      rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+      rtcSetGeometryIntersectFilterFunction(geom, embree_scene_detail::alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, embree_scene_detail::alpha_filter);
       im.alpha.push_back(std::move(g));
     }
 

@@ -14,6 +14,9 @@
 #include "techniques/tap_avx2.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace sm_filter {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
@@ -124,6 +127,7 @@ SL_AVX2 void poisson_batch_avx2(const MapLookupConsts& c, const Receivers8& r, c
   }
   _mm256_storeu_ps(out, _mm256_div_ps(lit, _mm256_set1_ps(float(disk.points.size()))));
 }
+#undef SL_AVX2
 #endif
 
 // 8 lanes of rotated Poisson PCF at once (poisson_batch_avx2), with each lane's rotation from
@@ -199,9 +203,11 @@ uint64_t tap_bytes(const MapParams&) { return 4; }
 uint64_t stored_planes(const MapParams&) { return 0; }
 
 }  // namespace
+}  // namespace sm_filter
 
-const MapFilterOps kDepthCompare = {"sm", "shadow map, depth compare with PCF", MapFilter::Depth,
-                                    parse_keys, keys_text, filter, lookup, taps_per_lookup,
-                                    tap_bytes, stored_planes};
+const MapFilterOps kDepthCompare = {
+    "sm", "shadow map, depth compare with PCF", MapFilter::Depth,
+    sm_filter::parse_keys, sm_filter::keys_text, sm_filter::filter, sm_filter::lookup,
+    sm_filter::taps_per_lookup, sm_filter::tap_bytes, sm_filter::stored_planes};
 
 }  // namespace shadowlab

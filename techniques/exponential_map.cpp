@@ -16,6 +16,9 @@
 #include "techniques/map_lookup.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace esm_filter {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
@@ -157,9 +160,11 @@ uint64_t tap_bytes(const MapParams&) { return 4; }
 uint64_t stored_planes(const MapParams&) { return 1; }
 
 }  // namespace
+}  // namespace esm_filter
 
-const MapFilterOps kExponentialMap = {"esm", "exponential shadow map", MapFilter::Exponential,
-                                      parse_keys, keys_text, filter, lookup, taps_per_lookup,
-                                      tap_bytes, stored_planes};
+const MapFilterOps kExponentialMap = {
+    "esm", "exponential shadow map", MapFilter::Exponential,
+    esm_filter::parse_keys, esm_filter::keys_text, esm_filter::filter, esm_filter::lookup,
+    esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes};
 
 }  // namespace shadowlab

@@ -20,6 +20,9 @@
 #include "techniques/map_lookup.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace evsm_filter {
 namespace {
 
 // The largest exponent whose square e^(2c) is still finite in float: ln(FLT_MAX)/2.
@@ -144,6 +147,7 @@ SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const 
     _mm_storeu_ps(out + 4 * half, res);
   }
 }
+#undef SL_AVX2
 #endif
 
 // 8 lanes at once: each warp's interleaved bilinear taps loaded by the AVX2 kernel, then
@@ -197,9 +201,11 @@ uint64_t stored_planes(const MapParams& p) { return p.evsm.moments == 4 ? 4 : 2;
 uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 }  // namespace
+}  // namespace evsm_filter
 
 const MapFilterOps kExponentialVarianceMap = {
-    "evsm",    "exponential variance shadow map", MapFilter::ExponentialVariance,
-    parse_keys, keys_text, filter, lookup, taps_per_lookup, tap_bytes, stored_planes};
+    "evsm", "exponential variance shadow map", MapFilter::ExponentialVariance,
+    evsm_filter::parse_keys, evsm_filter::keys_text, evsm_filter::filter, evsm_filter::lookup,
+    evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes};
 
 }  // namespace shadowlab

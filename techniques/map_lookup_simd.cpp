@@ -718,3 +718,7 @@ PcfFn pcf_simd() {
 }
 
 }  // namespace shadowlab
+
+// File-local: a unity build compiles the next file in the same translation unit.
+#undef SL_AVX2
+#undef SHADOWLAB_HAVE_X86

@@ -773,3 +773,6 @@ void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
 }
 
 }  // namespace shadowlab
+
+// File-local: a unity build compiles the next file in the same translation unit.
+#undef SL_ROW_CLONES

@@ -19,6 +19,9 @@
 #include "techniques/moment_bound.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace msm_filter {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
@@ -126,6 +129,7 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const fl
     _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(_mm256_sub_pd(one, g)));
   }
 }
+#undef SL_AVX2
 #endif
 
 // 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
@@ -173,9 +177,11 @@ uint64_t stored_planes(const MapParams& p) { return p.msm.quantize16 ? 2 : 4; }
 uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 }  // namespace
+}  // namespace msm_filter
 
 const MapFilterOps kMomentShadowMap = {
-    "msm",      "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
-    parse_keys, keys_text, filter, lookup, taps_per_lookup, tap_bytes, stored_planes};
+    "msm", "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
+    msm_filter::parse_keys, msm_filter::keys_text, msm_filter::filter, msm_filter::lookup,
+    msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes};
 
 }  // namespace shadowlab

@@ -19,6 +19,9 @@
 #include "techniques/tap_avx2.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace pcss_filter {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
@@ -291,6 +294,7 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
       out[k] = res[k];
   }
 }
+#undef SL_AVX2
 #endif
 
 // 8 lanes at once: each lane's receiver-plane gradient as make_receiver computes it (from the
@@ -366,9 +370,11 @@ uint64_t tap_bytes(const MapParams&) { return 4; }
 uint64_t stored_planes(const MapParams&) { return 0; }
 
 }  // namespace
+}  // namespace pcss_filter
 
-const MapFilterOps kPcss = {"pcss",     "percentage-closer soft shadows (blocker search + Poisson PCF)",
-                            MapFilter::Pcss, parse_keys, keys_text, filter, lookup,
-                            taps_per_lookup, tap_bytes, stored_planes};
+const MapFilterOps kPcss = {
+    "pcss", "percentage-closer soft shadows (blocker search + Poisson PCF)", MapFilter::Pcss,
+    pcss_filter::parse_keys, pcss_filter::keys_text, pcss_filter::filter, pcss_filter::lookup,
+    pcss_filter::taps_per_lookup, pcss_filter::tap_bytes, pcss_filter::stored_planes};
 
 }  // namespace shadowlab

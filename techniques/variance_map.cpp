@@ -15,6 +15,9 @@
 #include "techniques/map_lookup.h"
 
 namespace shadowlab {
+// The filter's own namespace: the unity build compiles several filters in one translation
+// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+namespace vsm_filter {
 namespace {
 
 void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
@@ -221,9 +224,11 @@ uint64_t stored_planes(const MapParams& p) { return 2 + (p.vsm.maxdepth_eps > 0.
 uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 }  // namespace
+}  // namespace vsm_filter
 
-const MapFilterOps kVarianceMap = {"vsm", "variance shadow map", MapFilter::Variance, parse_keys,
-                                   keys_text, filter, lookup, taps_per_lookup, tap_bytes,
-                                   stored_planes};
+const MapFilterOps kVarianceMap = {
+    "vsm", "variance shadow map", MapFilter::Variance,
+    vsm_filter::parse_keys, vsm_filter::keys_text, vsm_filter::filter, vsm_filter::lookup,
+    vsm_filter::taps_per_lookup, vsm_filter::tap_bytes, vsm_filter::stored_planes};
 
 }  // namespace shadowlab

@@ -150,7 +150,7 @@ struct RecordingShader {
 };
 
 // A soup: several meshes (the global triangle index runs over them) of exact vertices.
-struct Soup {
+struct ExactSoup {
   std::vector<std::vector<ExactVertex>> vertices;  // per mesh
   std::vector<std::vector<uint32_t>> indices;      // per mesh
   std::vector<std::vector<vec3>> positions;        // filled by views()
@@ -172,7 +172,7 @@ struct Soup {
 };
 
 // Reference coverage of every triangle of the soup whose vertices are all marked good.
-CoverageSets reference(const Soup& soup, int width, int height,
+CoverageSets reference(const ExactSoup& soup, int width, int height,
                        const std::vector<std::vector<bool>>* bad = nullptr) {
   CoverageSets sets(width, height);
   uint32_t global = 0;
@@ -211,7 +211,7 @@ struct KeepEverythingShader {
 
 // The depth-only fast path (DepthOnlyShader) must write exactly the bytes of the general path,
 // and its covered pixels (1/w > 0) must be the union of the reference's coverage sets.
-void expect_fast_path_agrees(Soup& soup, int width, int height, const CoverageSets& expected,
+void expect_fast_path_agrees(ExactSoup& soup, int width, int height, const CoverageSets& expected,
                              const std::string& what) {
   DepthTarget fast, general;
   DepthOnlyShader depth_only;
@@ -229,7 +229,7 @@ void expect_fast_path_agrees(Soup& soup, int width, int height, const CoverageSe
 }
 
 template <bool kAttributes>
-CoverageSets rasterized(Soup& soup, int width, int height, RasterStats* stats = nullptr,
+CoverageSets rasterized(ExactSoup& soup, int width, int height, RasterStats* stats = nullptr,
                         DepthTarget* depth_out = nullptr, const mat4& view_proj = projection()) {
   CoverageSets sets(width, height);
   RecordingShader<kAttributes> shader{&sets};
@@ -243,7 +243,7 @@ CoverageSets rasterized(Soup& soup, int width, int height, RasterStats* stats = 
 
 // Lists the triangles (global index, fixed-point vertices) of the soup covering pixel i in the
 // reference, for failure messages.
-std::string describe_pixel(const Soup& soup, int width, size_t i) {
+std::string describe_pixel(const ExactSoup& soup, int width, size_t i) {
   std::ostringstream os;
   const int64_t cx = 256 * int64_t(i % size_t(width)) + 128,
                 cy = 256 * int64_t(i / size_t(width)) + 128;
@@ -265,7 +265,7 @@ std::string describe_pixel(const Soup& soup, int width, size_t i) {
 }
 
 // Number of pixels whose covering set differs; the first few are reported.
-size_t compare(const CoverageSets& expected, const CoverageSets& actual, const Soup& soup,
+size_t compare(const CoverageSets& expected, const CoverageSets& actual, const ExactSoup& soup,
                const std::string& what) {
   size_t differ = 0;
   for (size_t i = 0; i < expected.count.size(); ++i) {
@@ -308,9 +308,9 @@ double random_coordinate(std::mt19937& rng, int size) {
 // A random soup of `triangles` triangles in 1–3 meshes: triangles of every size from a pixel
 // to the viewport, some sharing edges (fans), some with horizontal or vertical edges, vertices
 // at random depths so every triangle is in perspective.
-Soup random_soup(uint32_t seed, int width, int height, int triangles) {
+ExactSoup random_soup(uint32_t seed, int width, int height, int triangles) {
   std::mt19937 rng(seed);
-  Soup soup;
+  ExactSoup soup;
   const int meshes = 1 + int(rng() % 3);
   soup.vertices.resize(size_t(meshes));
   soup.indices.resize(size_t(meshes));
@@ -352,7 +352,7 @@ Soup random_soup(uint32_t seed, int width, int height, int triangles) {
 
 // Checks that every vertex of the soup really is exact: its NDC is a multiple of 2^-15 and its
 // position (ndc·w, ndc·w, −w) was representable (the shape 0/1 copies rescale by powers of two).
-void expect_exact(const Soup& soup, int width, int height) {
+void expect_exact(const ExactSoup& soup, int width, int height) {
   for (const auto& verts : soup.vertices)
     for (const ExactVertex& v : verts) {
       const double w = -double(v.position.z);
@@ -373,7 +373,7 @@ TEST(ReferenceRasterizer, RandomPerspectiveSoupsHaveIdenticalCoverage) {
   for (const auto& size : sizes) {
     const int w = size[0], h = size[1];
     for (int rep = 0; rep < 8; ++rep, ++seed) {
-      Soup soup = random_soup(seed, w, h, w * h < 100 ? 60 : 400);
+      ExactSoup soup = random_soup(seed, w, h, w * h < 100 ? 60 : 400);
       expect_exact(soup, w, h);
       const CoverageSets expected = reference(soup, w, h);
       const std::string what = "seed " + std::to_string(seed) + " viewport " + std::to_string(w) +
@@ -386,9 +386,9 @@ TEST(ReferenceRasterizer, RandomPerspectiveSoupsHaveIdenticalCoverage) {
 }
 
 // A soup from explicit screen positions (pixels) at varying depths, for hand-made cases.
-Soup soup_from_pixels(const std::vector<std::array<double, 2>>& pts,
+ExactSoup soup_from_pixels(const std::vector<std::array<double, 2>>& pts,
                       const std::vector<uint32_t>& idx, int width, int height) {
-  Soup soup;
+  ExactSoup soup;
   soup.vertices.resize(1);
   soup.indices.push_back(idx);
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -417,7 +417,7 @@ TEST(ReferenceRasterizer, RectangleWithEdgesThroughPixelCentres) {
   // pixels x in [10, 30), y in [20, 40), each exactly once.
   const int w = 64, h = 64;
   for (int diagonal = 0; diagonal < 2; ++diagonal) {
-    Soup soup = soup_from_pixels({{10.5, 20.5}, {30.5, 20.5}, {30.5, 40.5}, {10.5, 40.5}},
+    ExactSoup soup = soup_from_pixels({{10.5, 20.5}, {30.5, 20.5}, {30.5, 40.5}, {10.5, 40.5}},
                                  diagonal == 0 ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
                                                : std::vector<uint32_t>{0, 1, 3, 1, 2, 3},
                                  w, h);
@@ -437,10 +437,10 @@ TEST(ReferenceRasterizer, QuadsOnTileBoundaries) {
   for (int winding = 0; winding < 2; ++winding) {
     const std::vector<uint32_t> idx = winding == 0 ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
                                                    : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
-    Soup one = soup_from_pixels({{t, t}, {2 * t, t}, {2 * t, 2 * t}, {t, 2 * t}}, idx, w, h);
+    ExactSoup one = soup_from_pixels({{t, t}, {2 * t, t}, {2 * t, 2 * t}, {t, 2 * t}}, idx, w, h);
     expect_rectangle(rasterized<false>(one, w, h), kTileSize, kTileSize, 2 * kTileSize,
                      2 * kTileSize, "tile (1,1)");
-    Soup two = soup_from_pixels({{0, 0}, {2 * t, 0}, {2 * t, t}, {0, t}}, idx, w, h);
+    ExactSoup two = soup_from_pixels({{0, 0}, {2 * t, 0}, {2 * t, t}, {0, t}}, idx, w, h);
     expect_rectangle(rasterized<true>(two, w, h), 0, 0, 2 * kTileSize, kTileSize,
                      "tiles (0..1, 0)");
   }
@@ -452,7 +452,7 @@ TEST(ReferenceRasterizer, EdgesAndVerticesOnTileBoundaryPixelCentres) {
   // and on tile corners: coverage as the exact reference says, pixel for pixel.
   const int w = 2 * kTileSize + 9, h = 2 * kTileSize + 3;
   const double a = kTileSize - 0.5, b = kTileSize + 0.5, c = kTileSize;
-  Soup soup = soup_from_pixels(
+  ExactSoup soup = soup_from_pixels(
       {// right triangle with its vertical (left) edge at x = 63.5 and top edge at y = 63.5
        {a, a},
        {a + 20, a},
@@ -509,7 +509,7 @@ TEST(ReferenceRasterizer, OnePixelViewport) {
   };
   for (size_t i = 0; i < std::size(cases); ++i) {
     for (int winding = 0; winding < 2; ++winding) {
-      Soup soup = soup_from_pixels(
+      ExactSoup soup = soup_from_pixels(
           cases[i].pts,
           winding == 0 ? std::vector<uint32_t>{0, 1, 2} : std::vector<uint32_t>{0, 2, 1}, w, h);
       EXPECT_EQ(reference(soup, w, h).count[0], cases[i].expected) << "case " << i;
@@ -526,7 +526,7 @@ TEST(ReferenceRasterizer, SliversAndZeroAreaTriangles) {
   // Zero area after snapping: collinear (also along a row of pixel centres), repeated vertices,
   // all three equal. No pixel, no depth written, each counted as degenerate.
   {
-    Soup soup = soup_from_pixels({{10.5, 10.5},
+    ExactSoup soup = soup_from_pixels({{10.5, 10.5},
                                   {50.5, 30.5},
                                   {90.5, 50.5},  // collinear, on centres
                                   {0.5, 40.5},
@@ -559,7 +559,7 @@ TEST(ReferenceRasterizer, SliversAndZeroAreaTriangles) {
     const double off = (int(rng() % 9) - 4) / 256.0;  // −4 … 4 subpixels across the line
     const double cx = ax + t * (bx - ax) - off * (by - ay) / len;
     const double cy = ay + t * (by - ay) + off * (bx - ax) / len;
-    Soup soup = soup_from_pixels({{ax, ay}, {bx, by}, {cx, cy}}, {0, 1, 2}, w, h);
+    ExactSoup soup = soup_from_pixels({{ax, ay}, {bx, by}, {cx, cy}}, {0, 1, 2}, w, h);
     DepthTarget depth;
     const CoverageSets expected = reference(soup, w, h);
     const CoverageSets actual = rasterized<false>(soup, w, h, nullptr, &depth);
@@ -595,7 +595,7 @@ TEST(ReferenceRasterizer, NonFiniteVerticesAreDroppedAndCounted) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   for (uint32_t seed = 100; seed < 104; ++seed) {
-    Soup soup = random_soup(seed, w, h, 200);
+    ExactSoup soup = random_soup(seed, w, h, 200);
     std::mt19937 rng(seed);
     std::vector<std::vector<bool>> bad(soup.vertices.size());
     size_t bad_vertices = 0;
@@ -644,7 +644,7 @@ TEST(ReferenceRasterizer, NonFiniteVerticesAreDroppedAndCounted) {
     for (float iw : depth.inv_w) ASSERT_TRUE(std::isfinite(iw) && iw >= 0.0f) << "seed " << seed;
   }
   // A NaN in the matrix makes every vertex non-finite: everything dropped, nothing drawn.
-  Soup soup = random_soup(7, w, h, 50);
+  ExactSoup soup = random_soup(7, w, h, 50);
   mat4 broken = projection();
   broken[3][0] = nan;
   RasterStats st;

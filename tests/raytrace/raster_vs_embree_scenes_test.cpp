@@ -136,7 +136,7 @@ struct TriangleIdShader {
 };
 
 // Cube-face views of a light (same axes as techniques/cube_faces.cpp: +X −X +Y −Y +Z −Z).
-mat4 face_view(vec3 light, int face) {
+mat4 light_face_view(vec3 light, int face) {
   static const vec3 kForward[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   static const vec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
@@ -153,7 +153,7 @@ void expect_faces_agree(const std::string& name, int res) {
       glm::perspectiveRH_NO(glm::radians(90.0f), 1.0f, scene.light.near, scene.light.far);
   size_t faces_with_geometry = 0;
   for (int face = 0; face < 6; ++face) {
-    const mat4 view = face_view(scene.light.position, face);
+    const mat4 view = light_face_view(scene.light.position, face);
     std::vector<uint32_t> ids(size_t(res) * res, kNoPrimitive);
     TriangleIdShader shader{res, ids.data()};
     DepthTarget depth;

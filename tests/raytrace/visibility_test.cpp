@@ -19,16 +19,16 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // The quad a, b, c, d (counter-clockwise from its front) as one mesh (scenes/mesh_builders.h).
-int add_quad(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material = 0,
-             std::vector<vec2> uvs = {}) {
+int add_test_quad(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 d, int material = 0,
+                  std::vector<vec2> uvs = {}) {
   return add_quad_mesh(scene, a, b, c, d, material, std::move(uvs));
 }
 
 // Horizontal quad at height y over [x0, x1] × [z0, z1], front face up.
 int add_horizontal(Scene& scene, float y, float x0, float x1, float z0, float z1,
                    int material = 0, std::vector<vec2> uvs = {}) {
-  return add_quad(scene, vec3(x0, y, z1), vec3(x1, y, z1), vec3(x1, y, z0), vec3(x0, y, z0),
-                  material, std::move(uvs));
+  return add_test_quad(scene, vec3(x0, y, z1), vec3(x1, y, z1), vec3(x1, y, z0), vec3(x0, y, z0),
+                       material, std::move(uvs));
 }
 
 // Floor y = 0 over [-10, 10]², one opaque material, light above the origin.
@@ -265,7 +265,7 @@ TEST(SoftVisibility, IdenticalBytesFor1And2And7Threads) {
   Scene s = floor_scene(5.0f, 1.0f);
   add_horizontal(s, 1.0f, -1.5f, -0.5f, -1.0f, 1.0f);
   add_horizontal(s, 2.5f, 0.2f, 1.2f, -1.5f, 0.0f);
-  add_quad(s, vec3(0.5f, 0.0f, 1.0f), vec3(1.5f, 0.0f, 1.0f), vec3(1.5f, 1.5f, 1.2f),
+  add_test_quad(s, vec3(0.5f, 0.0f, 1.0f), vec3(1.5f, 0.0f, 1.0f), vec3(1.5f, 1.5f, 1.2f),
            vec3(0.5f, 1.5f, 1.2f));
   const EmbreeScene rt(s);
   const GBuffer g = floor_gbuffer(61, 37);  // not a multiple of the tile size

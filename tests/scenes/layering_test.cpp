@@ -44,9 +44,15 @@ TEST(Layering, FoldersIncludeOnlyWhatTheyDependOn) {
     for (const auto& [file, path] : inc.quoted) {
       const std::string t = top(path);
       const std::string where = std::string(folder) + "/" + file + " includes " + path;
-      if (std::string(folder) == "core") EXPECT_EQ(t, "core") << where;
-      if (std::string(folder) == "scenes") EXPECT_TRUE(t == "core" || t == "scenes") << where;
-      if (std::string(folder) != "scenes") EXPECT_NE(t, "scenes") << where;
+      if (std::string(folder) == "core") {
+        EXPECT_EQ(t, "core") << where;
+      }
+      if (std::string(folder) == "scenes") {
+        EXPECT_TRUE(t == "core" || t == "scenes") << where;
+      }
+      if (std::string(folder) != "scenes") {
+        EXPECT_NE(t, "scenes") << where;
+      }
       ++checked;
     }
     if (std::string(folder) != "raytrace")

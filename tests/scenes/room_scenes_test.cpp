@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Bounds mesh_bounds(const Mesh& m) {
+Bounds vertex_bounds(const Mesh& m) {
   Bounds b;
   for (const vec3& p : m.positions) {
     b.lo = glm::min(b.lo, p);
@@ -68,7 +68,7 @@ TEST(MeshBuilders, TorusIsClosedOutwardAndOnItsSurface) {
   Mesh flat;
   add_torus(flat, vec3(0.0f), vec3(0.0f, -1.0f, 0.0f), R, r, M, m);
   EXPECT_NEAR(signed_volume(flat), exact * sinc, 2e-3 * exact);
-  const Bounds b = mesh_bounds(flat);
+  const Bounds b = vertex_bounds(flat);
   EXPECT_NEAR(b.hi.y, r, 1e-6);
   EXPECT_NEAR(b.lo.y, -r, 1e-6);
 }
@@ -86,7 +86,7 @@ void expect_room_layout(const Scene& s, size_t sphere_tris, size_t torus_tris) {
   ASSERT_EQ(s.meshes.size(), 65u);
   EXPECT_EQ(s.meshes[0].name, "room");
   EXPECT_EQ(s.meshes[0].triangle_count(), 12u);
-  const Bounds room = mesh_bounds(s.meshes[0]);
+  const Bounds room = vertex_bounds(s.meshes[0]);
   EXPECT_EQ(room.lo, vec3(-30, 0, -30));
   EXPECT_EQ(room.hi, vec3(30, 8, 30));
   EXPECT_NEAR(signed_volume(s.meshes[0]), -20.0 * 20.0 * 8.0, 1e-2)
@@ -96,7 +96,7 @@ void expect_room_layout(const Scene& s, size_t sphere_tris, size_t torus_tris) {
     EXPECT_EQ(m.name, "object" + std::to_string(i));
     EXPECT_EQ(m.triangle_count(), i % 2 == 0 ? sphere_tris : torus_tris) << m.name;
     EXPECT_GT(signed_volume(m), 0.0) << m.name << " faces outward";
-    const Bounds b = mesh_bounds(m);
+    const Bounds b = vertex_bounds(m);
     EXPECT_GE(b.lo.y, -1e-4f) << m.name;
     EXPECT_LE(b.hi.y, 8.0f) << m.name;
     EXPECT_GE(std::min(b.lo.x, b.lo.z), -10.0f) << m.name;
@@ -151,7 +151,7 @@ TEST(RoomScenes, MatchTheObjGroupByGroup) {
             << ref.meshes[m].name;
         EXPECT_LE(vertex_set_distance(s.meshes[m], ref.meshes[m]), 1e-4) << ref.meshes[m].name;
       }
-      const Bounds a = mesh_bounds(s.meshes[m]), b = mesh_bounds(ref.meshes[m]);
+      const Bounds a = vertex_bounds(s.meshes[m]), b = vertex_bounds(ref.meshes[m]);
       for (int k = 0; k < 3; ++k) {
         EXPECT_NEAR(a.lo[k], b.lo[k], tol) << name << " " << ref.meshes[m].name << " axis " << k;
         EXPECT_NEAR(a.hi[k], b.hi[k], tol) << name << " " << ref.meshes[m].name << " axis " << k;
