@@ -134,6 +134,7 @@ SL_AVX2 void poisson_batch_avx2(const MapLookupConsts& c, const Receivers8& r, c
 // its pixel. Used only where the AVX2 kernels and one-base gathers exist.
 struct PoissonBatch {
   static constexpr bool kEnabled = true;
+  void prefetch(const MapLookupConsts&, const Receivers8&) const {}  // taps spread over a disk
   const PoissonDisk* disk;
   float radius;
   const LightMap* map;

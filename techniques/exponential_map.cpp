@@ -114,6 +114,10 @@ struct EsmBatch {
   bool avx2;  // use_avx2_paths() at the lookup's start
   Bilinear8Fn bilinear8;
   PlaneGather a;
+  Prefetch8Fn prefetch8;
+  void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
+    if (prefetch8 && a.ok) prefetch8(c, r, a, 1);
+  }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float z[1][4][8], fx[8], fy[8], ct[8];
     if (bilinear8 && a.ok) {
@@ -152,7 +156,8 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     return esm_combine(z4[0], z4[1], z4[2], z4[3], fx, fy, cf * r.depth);
   };
   lookup_pixels(scene, g, p, map, mask, texels, visibility,
-                EsmBatch<decltype(taps)>{taps, cf, use_avx2_paths(), bilinear8_simd(), plane_gather(map.a)});
+                EsmBatch<decltype(taps)>{taps, cf, use_avx2_paths(), bilinear8_simd(), plane_gather(map.a),
+                                         prefetch8_simd()});
 }
 
 uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear

@@ -158,6 +158,10 @@ struct EvsmBatch {
   EvsmConsts k;
   Bilinear8x2Fn taps;  // the 2- or 4-value kernel
   PlaneGather moments;  // a
+  Prefetch8Fn prefetch8;
+  void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
+    if (prefetch8) prefetch8(c, r, moments, k.four ? 4 : 2);
+  }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     taps(c, r, moments, v, fx, fy);
@@ -188,7 +192,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     return evsm_value(k, P[0], P[1], P[2], P[3], bl.fx, bl.fy, r.depth);
   };
   EvsmBatch batch{k, k.four ? bilinear8_interleaved4_simd() : bilinear8_interleaved2_simd(),
-                  plane_gather(map.a)};
+                  plane_gather(map.a), prefetch8_simd()};
   const bool gathers = batch.taps != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);

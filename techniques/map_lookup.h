@@ -25,6 +25,7 @@ inline Receiver lane_receiver(const Receivers8& r, int k, size_t pixel) {
 struct NoBatch {
   static constexpr bool kEnabled = false;
   void operator()(const MapLookupConsts&, const Receivers8&, size_t, float*) const {}
+  void prefetch(const MapLookupConsts&, const Receivers8&) const {}
 };
 
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
@@ -56,6 +57,8 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
   const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? pcf_simd() : nullptr;
   lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
     size_t i = b;
+    Receivers8 next;
+    bool have_next = false;
     for (; i + 8 <= e; i += 8) {
       const float* pos = &g.position[i].x;
       const float* nrm = &g.geo_normal[i].x;
@@ -69,14 +72,25 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
       if (pcf) {
         pcf(c, p.pcf, pos, nrm, &g.covered[i], m, t, r);
       } else {
-        receivers8(c, pos, nrm, &g.covered[i], r);
         if constexpr (Batch::kEnabled) {
+          // Receivers one batch ahead, with their map rows prefetched (Batch::prefetch), so
+          // the current batch's reconstruction overlaps the next one's memory reads.
+          if (have_next)
+            r = next;
+          else
+            receivers8(c, pos, nrm, &g.covered[i], r);
+          have_next = i + 16 <= e;
+          if (have_next) {
+            receivers8(c, &g.position[i + 8].x, &g.geo_normal[i + 8].x, &g.covered[i + 8], next);
+            batch.prefetch(c, next);
+          }
           // The batch's lanes and the inactive lanes' masks in one vector step.
           alignas(32) float vis[8];
           batch(c, r, i, vis);
           merge8(r, vis, m, t);
           continue;
         }
+        receivers8(c, pos, nrm, &g.covered[i], r);
         for (int k = 0; k < 8; ++k) {
           m[k] = r.mask[k];
           if (t) t[k] = uint32_t(r.texel[k]);

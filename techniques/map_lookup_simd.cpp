@@ -644,6 +644,32 @@ SL_AVX2 void bilinear8_interleaved4_avx2(const MapLookupConsts& c, const Receive
   }
 }
 
+SL_AVX2 void prefetch8_avx2(const MapLookupConsts& c, const Receivers8& r,
+                            const PlaneGather& plane, int floats_per_texel) {
+  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
+  const int active_bits =
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active))));
+  if (!active_bits) return;
+  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const __m256i ix = floor_i(_mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f)));
+  const __m256i iy = floor_i(_mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f)));
+  const __m256i x0 = clamp_i(ix, zero, _mm256_sub_epi32(w, one));
+  const __m256i y0 = clamp_i(iy, zero, _mm256_sub_epi32(h, one));
+  const __m256i y1 = clamp_i(_mm256_add_epi32(iy, one), zero, _mm256_sub_epi32(h, one));
+  const __m256i off = lane_i(plane.offset, face), fpt = _mm256_set1_epi32(floats_per_texel);
+  alignas(32) int32_t at[2][8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at[0]),
+                     _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(y0, w), x0), fpt)));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at[1]),
+                     _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(y1, w), x0), fpt)));
+  for (int k = 0; k < 8; ++k)
+    if ((active_bits >> k) & 1) {
+      _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[0][k]), _MM_HINT_T0);
+      _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[1][k]), _MM_HINT_T0);
+    }
+}
+
 }  // namespace
 #endif
 
@@ -667,6 +693,13 @@ void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels
   }
 }
 #endif
+
+Prefetch8Fn prefetch8_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return prefetch8_avx2;
+#endif
+  return nullptr;
+}
 
 Bilinear8x2Fn bilinear8_interleaved4_simd() {
 #ifdef SHADOWLAB_HAVE_X86

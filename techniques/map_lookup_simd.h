@@ -100,6 +100,14 @@ Bilinear8x2Fn bilinear8_interleaved2_simd();
 // The same for four values per texel (texel i's at offset + 4i + 0..3): values[0..3][tap][lane].
 Bilinear8x2Fn bilinear8_interleaved4_simd();
 
+// Prefetches the two texel rows of each active lane's bilinear footprint in a plane of
+// floats_per_texel values per texel (a hint only: no value changes). The batched lookup issues it
+// for the next 8 pixels before reconstructing the current ones, so their map lines (the maps are
+// larger than the caches at res 1024) arrive while the current batch computes.
+using Prefetch8Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
+                             const PlaneGather& plane, int floats_per_texel);
+Prefetch8Fn prefetch8_simd();
+
 // The pixel loop's result of a batch: mask[k] = active lane ? std::clamp(vis[k], 0, 1) :
 // r.mask[k], texels[k] = r.texel[k] (when texels is given). Vector stores where the CPU has
 // AVX2 (only the AVX2 receivers make batches), with std::clamp's compare order (a NaN stays NaN).

@@ -139,6 +139,10 @@ struct MsmBatch {
   MsmConsts k;
   Bilinear8x2Fn bilinear8x4;
   PlaneGather moments;  // a: moments 1 to 4 per texel
+  Prefetch8Fn prefetch8;
+  void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
+    if (prefetch8) prefetch8(c, r, moments, 4);
+  }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8x4(c, r, moments, v, fx, fy);
@@ -163,7 +167,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       for (int j = 0; j < 4; ++j) P[j][i] = map.a[fi][4 * idx[i] + size_t(j)];
     return msm_value(k, P, bl.fx, bl.fy, r.depth);
   };
-  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a)};
+  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a), prefetch8_simd()};
   const bool gathers = batch.bilinear8x4 != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);

@@ -303,6 +303,7 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
 // take pcss_visibility whole.
 struct PcssBatch {
   static constexpr bool kEnabled = true;
+  void prefetch(const MapLookupConsts&, const Receivers8&) const {}  // taps spread over a disk
   static constexpr bool kComputesGradient = true;
   const PcssContext* ctx;
   const Scene* scene;

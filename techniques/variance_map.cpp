@@ -162,6 +162,10 @@ struct VsmBatch {
   Bilinear8x2Fn bilinear8x2;
   Bilinear8Fn bilinear8;
   PlaneGather moments, max_depth;
+  Prefetch8Fn prefetch8;
+  void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
+    if (prefetch8) prefetch8(c, r, moments, 2);
+  }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[3][4][8], fx[8], fy[8];
     bilinear8x2(c, r, moments, v, fx, fy);
@@ -210,7 +214,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     return vsm_value(k, A, B, M, bl.fx, bl.fy, r.depth);
   };
   VsmBatch batch{k, bilinear8_interleaved2_simd(), bilinear8_simd(), plane_gather(map.a),
-                 plane_gather(map.max_depth)};
+                 plane_gather(map.max_depth), prefetch8_simd()};
   const bool gathers = batch.bilinear8x2 && batch.bilinear8 && batch.moments.ok &&
                        (!k.maxdepth || batch.max_depth.ok);
   if (gathers)
