@@ -499,20 +499,23 @@ SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
   }
 }
 
-// The bilinear footprint of 8 receivers in one interleaved plane of two values per texel
-// (texel i's at plane.base[offset + 2i] and [+ 2i + 1]; variance_map.cpp's mean and variance):
-// bilinear8_pairs_avx2's taps, with one 16-byte load per lane and row fetching both taps' two
-// values, and the same edge rule (the load starts at clamp(ix, 0, w − 2); lanes clamped at the
-// left edge take the first texel for both taps, at the right edge the second). Faces 1 texel
-// wide, or no active lane: the clamped taps lane by lane. values[v][tap][lane].
-SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receivers8& r,
-                                         const PlaneGather& plane, float (*values)[4][8],
-                                         float* fx, float* fy) {
+// The shared front of the interleaved kernels below, for a plane of n values per texel (texel
+// i's at plane.base[offset + n·i + v]): the fractions into fx, fy, and per lane and tap row the
+// float index where its pair of texels starts, at clamp(ix, 0, w − 2), inactive lanes pointed at
+// an active lane's pair; lanes clamped at the left edge take the first texel for both taps, at
+// the right edge the second (bilinear_taps' clamped texels). With a face 1 texel wide, or no
+// active lane, it fills values lane by lane itself and returns false.
+struct PairRows {
+  __m256 active, left, right;
+  alignas(32) int32_t at[2][8];
+};
+SL_AVX2 inline bool pair_rows(const MapLookupConsts& c, const Receivers8& r, const PlaneGather& plane,
+                              int n, float (*values)[4][8], float* fx, float* fy, PairRows& out) {
   const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
-  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
+  out.active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
   const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
-  const int active_bits = _mm256_movemask_ps(active);
-  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const int active_bits = _mm256_movemask_ps(out.active);
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256(), nv = _mm256_set1_epi32(n);
   const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
   const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
   const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
@@ -522,7 +525,7 @@ SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receive
   const __m256i off = lane_i(plane.offset, face);
   const __m256i r0 = _mm256_mullo_epi32(clamp_i(iy, zero, hm), w);
   const __m256i r1 = _mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w);
-  if (_mm256_movemask_ps(_mm256_and_ps(active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
+  if (_mm256_movemask_ps(_mm256_and_ps(out.active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
       active_bits == 0) {
     const __m256i x0 = clamp_i(ix, zero, wm), x1 = clamp_i(_mm256_add_epi32(ix, one), zero, wm);
     alignas(32) int32_t at[4][8];
@@ -530,29 +533,46 @@ SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receive
                             _mm256_add_epi32(r1, x0), _mm256_add_epi32(r1, x1)};
     for (int t = 0; t < 4; ++t)
       _mm256_store_si256(reinterpret_cast<__m256i*>(at[t]),
-                         _mm256_add_epi32(off, _mm256_add_epi32(idx[t], idx[t])));
+                         _mm256_add_epi32(off, _mm256_mullo_epi32(idx[t], nv)));
     for (int t = 0; t < 4; ++t)
       for (int k = 0; k < 8; ++k) {
         const bool on = (active_bits >> k) & 1;
-        values[0][t][k] = on ? plane.base[at[t][k]] : 0.0f;
-        values[1][t][k] = on ? plane.base[at[t][k] + 1] : 0.0f;
+        for (int v = 0; v < n; ++v) values[v][t][k] = on ? plane.base[at[t][k] + v] : 0.0f;
       }
-    return;
+    return false;
   }
   const __m256i wm2 = _mm256_sub_epi32(wm, one);
   const __m256i start = clamp_i(ix, zero, wm2);
-  const __m256 left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
-  const __m256 right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
-  const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
+  out.left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
+  out.right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
   const int first_active = __builtin_ctz(unsigned(active_bits));
+  const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
   for (int y = 0; y < 2; ++y) {
-    alignas(32) int32_t at[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(at),
-                       _mm256_add_epi32(off, _mm256_add_epi32(row[y], row[y])));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out.at[y]),
+                       _mm256_add_epi32(off, _mm256_mullo_epi32(row[y], nv)));
     for (int k = 0; k < 8; ++k)
-      if (!((active_bits >> k) & 1)) at[k] = at[first_active];
+      if (!((active_bits >> k) & 1)) out.at[y][k] = out.at[y][first_active];
+  }
+  return true;
+}
+
+// Tap row y's first and second texel values from their transposed lanes, with the edge rule.
+SL_AVX2 inline void store_pair(const PairRows& p, __m256 first, __m256 second, float (*tap)[8], int y) {
+  _mm256_storeu_ps(tap[2 * y], _mm256_and_ps(_mm256_blendv_ps(first, second, p.right), p.active));
+  _mm256_storeu_ps(tap[2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(second, first, p.left), p.active));
+}
+
+// The bilinear footprint of 8 receivers in one interleaved plane of two values per texel
+// (variance_map.cpp's mean and variance, EVSM2's): one 16-byte load per lane and tap row fetches
+// both taps' two values, then a 4 × 4 transpose in each half. values[v][tap][lane].
+SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receivers8& r,
+                                         const PlaneGather& plane, float (*values)[4][8],
+                                         float* fx, float* fy) {
+  PairRows p;
+  if (!pair_rows(c, r, plane, 2, values, fx, fy, p)) return;
+  for (int y = 0; y < 2; ++y) {
     // Lane k's (u0 v0 u1 v1): the first tap's two values, then the second's.
-    auto quad = [&](int k) { return _mm_loadu_ps(plane.base + at[k]); };
+    auto quad = [&](int k) { return _mm_loadu_ps(plane.base + p.at[y][k]); };
     // Y_k = lanes k (low half) and k + 4 (high half); a 4 × 4 transpose in each half.
     const __m256 y0 = _mm256_set_m128(quad(4), quad(0)), y1 = _mm256_set_m128(quad(5), quad(1));
     const __m256 y2 = _mm256_set_m128(quad(6), quad(2)), y3 = _mm256_set_m128(quad(7), quad(3));
@@ -560,67 +580,22 @@ SL_AVX2 void bilinear8_interleaved2_avx2(const MapLookupConsts& c, const Receive
     const __m256 t1 = _mm256_unpackhi_ps(y0, y1);  // u1 …, v1 …
     const __m256 t2 = _mm256_unpacklo_ps(y2, y3);  // lanes 2 3
     const __m256 t3 = _mm256_unpackhi_ps(y2, y3);
-    const __m256 u_first = _mm256_shuffle_ps(t0, t2, 0x44), v_first = _mm256_shuffle_ps(t0, t2, 0xEE);
-    const __m256 u_second = _mm256_shuffle_ps(t1, t3, 0x44), v_second = _mm256_shuffle_ps(t1, t3, 0xEE);
-    _mm256_storeu_ps(values[0][2 * y], _mm256_and_ps(_mm256_blendv_ps(u_first, u_second, right), active));
-    _mm256_storeu_ps(values[0][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(u_second, u_first, left), active));
-    _mm256_storeu_ps(values[1][2 * y], _mm256_and_ps(_mm256_blendv_ps(v_first, v_second, right), active));
-    _mm256_storeu_ps(values[1][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(v_second, v_first, left), active));
+    store_pair(p, _mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t1, t3, 0x44), values[0], y);
+    store_pair(p, _mm256_shuffle_ps(t0, t2, 0xEE), _mm256_shuffle_ps(t1, t3, 0xEE), values[1], y);
   }
 }
 
-// The bilinear footprint of 8 receivers in one interleaved plane of four values per texel
-// (texel i's at plane.base[offset + 4i + 0..3]; moment_shadow_map.cpp's moments): one 32-byte
-// load per lane and row fetches both taps' four values, then an 8 × 8 transpose; the edge rule
-// and the fallback of bilinear8_interleaved2_avx2. values[v][tap][lane].
+// The same for four values per texel (moment_shadow_map.cpp's moments, EVSM4's two warps): one
+// 32-byte load per lane and tap row fetches both taps' four values, then an 8 × 8 transpose.
 SL_AVX2 void bilinear8_interleaved4_avx2(const MapLookupConsts& c, const Receivers8& r,
                                          const PlaneGather& plane, float (*values)[4][8],
                                          float* fx, float* fy) {
-  const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
-  const __m256 active = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)));
-  const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
-  const int active_bits = _mm256_movemask_ps(active);
-  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
-  const __m256i wm = _mm256_sub_epi32(w, one), hm = _mm256_sub_epi32(h, one);
-  const __m256 gx = _mm256_sub_ps(_mm256_load_ps(r.sx), set(0.5f));
-  const __m256 gy = _mm256_sub_ps(_mm256_load_ps(r.sy), set(0.5f));
-  const __m256i ix = floor_i(gx), iy = floor_i(gy);
-  _mm256_storeu_ps(fx, _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix)));
-  _mm256_storeu_ps(fy, _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy)));
-  const __m256i off = lane_i(plane.offset, face);
-  const __m256i r0 = _mm256_mullo_epi32(clamp_i(iy, zero, hm), w);
-  const __m256i r1 = _mm256_mullo_epi32(clamp_i(_mm256_add_epi32(iy, one), zero, hm), w);
-  if (_mm256_movemask_ps(_mm256_and_ps(active, _mm256_castsi256_ps(_mm256_cmpgt_epi32(one, wm)))) ||
-      active_bits == 0) {
-    const __m256i x0 = clamp_i(ix, zero, wm), x1 = clamp_i(_mm256_add_epi32(ix, one), zero, wm);
-    alignas(32) int32_t at[4][8];
-    const __m256i idx[4] = {_mm256_add_epi32(r0, x0), _mm256_add_epi32(r0, x1),
-                            _mm256_add_epi32(r1, x0), _mm256_add_epi32(r1, x1)};
-    for (int t = 0; t < 4; ++t)
-      _mm256_store_si256(reinterpret_cast<__m256i*>(at[t]),
-                         _mm256_add_epi32(off, _mm256_slli_epi32(idx[t], 2)));
-    for (int t = 0; t < 4; ++t)
-      for (int k = 0; k < 8; ++k) {
-        const bool on = (active_bits >> k) & 1;
-        for (int v = 0; v < 4; ++v) values[v][t][k] = on ? plane.base[at[t][k] + v] : 0.0f;
-      }
-    return;
-  }
-  const __m256i wm2 = _mm256_sub_epi32(wm, one);
-  const __m256i start = clamp_i(ix, zero, wm2);
-  const __m256 left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
-  const __m256 right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
-  const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
-  const int first_active = __builtin_ctz(unsigned(active_bits));
+  PairRows p;
+  if (!pair_rows(c, r, plane, 4, values, fx, fy, p)) return;
   for (int y = 0; y < 2; ++y) {
-    alignas(32) int32_t at[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(at),
-                       _mm256_add_epi32(off, _mm256_slli_epi32(row[y], 2)));
-    for (int k = 0; k < 8; ++k)
-      if (!((active_bits >> k) & 1)) at[k] = at[first_active];
     // R_k = lane k's 8 floats: the first tap's values 0..3, then the second tap's.
     __m256 R[8];
-    for (int k = 0; k < 8; ++k) R[k] = _mm256_loadu_ps(plane.base + at[k]);
+    for (int k = 0; k < 8; ++k) R[k] = _mm256_loadu_ps(plane.base + p.at[y][k]);
     // 8 × 8 transpose: O[j][k] = R[k][j].
     __m256 t[8], tt[8], O[8];
     for (int q = 0; q < 4; ++q) {
@@ -637,10 +612,7 @@ SL_AVX2 void bilinear8_interleaved4_avx2(const MapLookupConsts& c, const Receive
       O[j] = _mm256_permute2f128_ps(tt[j], tt[4 + j], 0x20);
       O[4 + j] = _mm256_permute2f128_ps(tt[j], tt[4 + j], 0x31);
     }
-    for (int v = 0; v < 4; ++v) {
-      _mm256_storeu_ps(values[v][2 * y], _mm256_and_ps(_mm256_blendv_ps(O[v], O[4 + v], right), active));
-      _mm256_storeu_ps(values[v][2 * y + 1], _mm256_and_ps(_mm256_blendv_ps(O[4 + v], O[v], left), active));
-    }
+    for (int v = 0; v < 4; ++v) store_pair(p, O[v], O[4 + v], values[v], y);
   }
 }
 
