@@ -94,10 +94,9 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
   const size_t nf = layout.faces.size();
   const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
-  std::vector<uint32_t> flags(size_t(by), 0);
   // Faces found so far by any thread: a block whose face is among them needs no walk, and once
-  // every face is found the remaining blocks are skipped. The answer is the union either way, so
-  // it does not depend on which thread found what first.
+  // every face is found the remaining blocks are skipped. Every block ORs what it found in, so
+  // at the end this is the answer, the union, whichever thread found a face first.
   std::atomic<uint32_t> found{known};
   parallel_for_chunks(size_t(by), 1, [&](size_t r0, size_t r1) {
     uint32_t f = known;
@@ -125,12 +124,11 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
         }
         f |= found.fetch_or(f, std::memory_order_relaxed);
       }
-      flags[r] = f;
     }
   });
-  std::vector<bool> needed(layout.faces.size(), false);
-  for (const uint32_t f : flags)
-    for (size_t i = 0; i < needed.size(); ++i) needed[i] = needed[i] || ((f >> i) & 1u);
+  const uint32_t f = found.load();
+  std::vector<bool> needed(nf, false);
+  for (size_t i = 0; i < nf; ++i) needed[i] = (f >> i) & 1u;
   return needed;
 }
 

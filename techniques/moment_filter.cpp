@@ -607,8 +607,8 @@ void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double
 
 namespace {
 
-// Row y of plane c goes to row(c, y, scratch): a row of the plane itself, or (interleaving)
-// scratch of w floats that done(y, scratch_rows) interleaves afterwards.
+// Plane c's filtered row y goes to row_of(c, y, tmp): a row of out[c], or (interleaved given)
+// the c-th of four w-float rows in tmp, which finish(y, tmp) then interleaves into row y.
 void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
                    std::vector<float>* out, std::vector<float>* interleaved) {
   const size_t n = size_t(w) * size_t(h);

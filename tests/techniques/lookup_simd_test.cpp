@@ -216,6 +216,22 @@ TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
 namespace shadowlab {
 namespace {
 
+// 8 receivers on faces 0–2 (1, 2 and 9 texels wide in the tests below) at coordinates that are
+// often exactly on or near a texel edge or outside the face, a fifth of the lanes inactive.
+// Faces 0 and 1 only in every fourth batch, so the wide-load paths run on the others.
+Receivers8 edge_receivers(std::mt19937& rng, int trial) {
+  std::uniform_real_distribution<float> u(-2.0f, 12.0f);
+  const float edges[] = {-3.0f, -0.5f, 0.0f, 0.49f, 0.5f, 0.51f, 1.0f, 1.5f, 2.5f, 8.5f, 9.0f, 9.5f, 20.0f};
+  Receivers8 r{};
+  for (int k = 0; k < 8; ++k) {
+    r.face[k] = trial % 4 == 0 ? int32_t(rng() % 3) : 2;
+    r.sx[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+    r.sy[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
+    r.active[k] = rng() % 5 ? -1 : 0;
+  }
+  return r;
+}
+
 // The bilinear tap loads (bilinear8_simd: adjacent taps loaded as pairs) against
 // bilinear_taps + bilinear_indices, on faces 1, 2 and 9 texels wide, with lanes clamped at
 // every edge, inactive lanes, and two planes whose texel values are all distinct.
@@ -244,18 +260,9 @@ TEST(LookupSimd, BilinearTapsMatchTheScalarTapsAtEveryEdge) {
     c.height[f] = heights[f];
   }
   std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-2.0f, 12.0f);
-  const float edges[] = {-3.0f, -0.5f, 0.0f, 0.49f, 0.5f, 0.51f, 1.0f, 1.5f, 2.5f, 8.5f, 9.0f, 9.5f, 20.0f};
   int checked = 0, clamped_left = 0, clamped_right = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    Receivers8 r{};
-    for (int k = 0; k < 8; ++k) {
-      // Faces 1 and 2 only in some batches, so the pair path runs on batches without them.
-      r.face[k] = trial % 4 == 0 ? int32_t(rng() % 3) : 2;
-      r.sx[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
-      r.sy[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
-      r.active[k] = rng() % 5 ? -1 : 0;
-    }
+    const Receivers8 r = edge_receivers(rng, trial);
     alignas(32) float values[2][4][8], fx[8], fy[8];
     bilinear8(c, r, g, 2, values, fx, fy);
     for (int k = 0; k < 8; ++k) {
@@ -299,19 +306,11 @@ void check_interleaved_taps(Bilinear8x2Fn kernel, int n_values) {
   g.base = plane.data();
   g.ok = true;
   std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(-2.0f, 12.0f);
-  const float edges[] = {-3.0f, -0.5f, 0.0f, 0.49f, 0.5f, 0.51f, 1.0f, 1.5f, 2.5f, 8.5f, 9.0f, 9.5f, 20.0f};
   int checked = 0, clamped_left = 0, clamped_right = 0, fast_batches = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    Receivers8 r{};
+    const Receivers8 r = edge_receivers(rng, trial);
     bool narrow = false;
-    for (int k = 0; k < 8; ++k) {
-      r.face[k] = trial % 4 == 0 ? int32_t(rng() % 3) : 2;
-      r.sx[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
-      r.sy[k] = rng() % 2 ? edges[rng() % 13] : u(rng);
-      r.active[k] = rng() % 5 ? -1 : 0;
-      narrow |= r.active[k] && r.face[k] == 0;
-    }
+    for (int k = 0; k < 8; ++k) narrow |= r.active[k] && r.face[k] == 0;
     fast_batches += !narrow;
     alignas(32) float values[4][4][8], fx[8], fy[8];
     kernel(c, r, g, values, fx, fy);
