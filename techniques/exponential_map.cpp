@@ -35,9 +35,13 @@ void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
-    filter_esm_log(map.dist.distance[f].data(), face.width, face.height, p.blur, p.esm.c, map.a[f]);
+    filter_esm_log(map.dist.distance[f].data(), face.width, face.height, p.blur, p.esm.c, map.a[f],
+                   face_tiles(map, f),
+                   f < map.dist.min_distance.size() ? &map.dist.min_distance[f] : nullptr);
   }
 }
+
+bool by_tiles(const MapParams&) { return true; }
 
 // One occluder term, e^(z − c·t) in float (core/exp_log.h's exp_f, whose steps the AVX2 batch
 // below repeats, so both give the same bits). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
@@ -170,6 +174,7 @@ uint64_t stored_planes(const MapParams&) { return 1; }
 const MapFilterOps kExponentialMap = {
     "esm", "exponential shadow map", MapFilter::Exponential,
     esm_filter::parse_keys, esm_filter::keys_text, esm_filter::filter, esm_filter::lookup,
-    esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes};
+    esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes,
+    esm_filter::by_tiles};
 
 }  // namespace shadowlab

@@ -66,12 +66,14 @@ void filter(const MapParams& p, LightMap& map) {
     const LightFace& face = map.layout.faces[f];
     const float* d = map.dist.distance[f].data();
     filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_pos, 1.0, s,
-                                      0, map.a[f]);
+                                      0, map.a[f], face_tiles(map, f));
     if (s == 4)
       filter_warped_moments_interleaved(d, face.width, face.height, p.blur, p.evsm.c_neg, -1.0,
-                                        4, 2, map.a[f]);
+                                        4, 2, map.a[f], face_tiles(map, f));
   }
 }
+
+bool by_tiles(const MapParams&) { return true; }
 
 struct EvsmConsts {
   double c_pos, c_neg;
@@ -210,6 +212,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 const MapFilterOps kExponentialVarianceMap = {
     "evsm", "exponential variance shadow map", MapFilter::ExponentialVariance,
     evsm_filter::parse_keys, evsm_filter::keys_text, evsm_filter::filter, evsm_filter::lookup,
-    evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes};
+    evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes,
+    evsm_filter::by_tiles};
 
 }  // namespace shadowlab

@@ -14,6 +14,10 @@ namespace shadowlab {
 struct FaceDistances {
   std::vector<std::vector<float>> distance;  // per face: texel_count() values, or empty if not rendered
   std::vector<bool> rendered;
+  // Per face: the smallest stored distance (+inf when it saw nothing, or was not rendered),
+  // found in the tile epilogue while the tile is in cache (the ESM filter's shift). Empty for
+  // distances written by other code (the ESM filter then finds the minimum itself).
+  std::vector<float> min_distance;
   size_t triangles_submitted = 0;  // summed over rendered faces
   size_t triangles_culled = 0;     // rejected before binning (outside a face's frustum)
   size_t triangles_binned = 0;     // reached binning (after culling and clipping)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "core/progress.h"
@@ -28,9 +29,16 @@ FaceLayout map_layout(const MapParams& p, const Scene& scene) {
 void render_light_map(const Scene& scene, const MapParams& p, const std::vector<bool>& needed,
                       LightMap& map) {
   render_face_distances(scene, map.layout, needed, map.dist, CullMode::None, p.tess);
-  for (size_t f = 0; f < map.dist.distance.size(); ++f)
-    if (map.dist.rendered[f])
-      quantize_depths(map.dist.distance[f].data(), map.dist.distance[f].size(), p.depth);
+  if (p.depth == DepthFormat::F32) return;
+  for (size_t f = 0; f < map.dist.distance.size(); ++f) {
+    if (!map.dist.rendered[f]) continue;
+    std::vector<float>& d = map.dist.distance[f];
+    quantize_depths(d.data(), d.size(), p.depth);
+    // The stored values' minimum again (the render's was of the unquantized distances).
+    float m = std::numeric_limits<float>::infinity();
+    for (const float v : d) m = v < m ? v : m;
+    map.dist.min_distance[f] = m;
+  }
 }
 
 void filter_light_map(const MapParams& p, LightMap& map) {
@@ -64,6 +72,11 @@ namespace {
 
 // Work of one repeat (README "Work counts"): texels a lookup reads and the bytes per texel.
 void count_work(const MapParams& p, const LightMap& map, size_t looked_up, WorkCounts& w) {
+  uint64_t filtered_texels = 0;  // texels of the rendered faces the filter wrote
+  for (size_t f = 0; f < map.layout.faces.size(); ++f)
+    if (map.dist.rendered[f])
+      filtered_texels += tile_texels(face_tiles(map, f), map.layout.faces[f].width,
+                                     map.layout.faces[f].height);
   w.triangles_submitted = map.dist.triangles_submitted;
   w.triangles_binned = map.dist.triangles_binned;
   w.texels_rendered = map.dist.texels_rendered;
@@ -72,7 +85,7 @@ void count_work(const MapParams& p, const LightMap& map, size_t looked_up, WorkC
   const uint64_t planes = f.stored_planes(p);
   const uint64_t tap_bytes = f.tap_bytes(p);
   const uint64_t taps_per_lookup = f.taps_per_lookup(p);
-  w.texels_filtered = planes * map.dist.texels_rendered;
+  w.texels_filtered = planes * filtered_texels;
   w.taps = taps_per_lookup * looked_up;
   w.bytes_written = 4 * (map.dist.texels_rendered + w.texels_filtered);
   w.bytes_read = tap_bytes * w.taps;
@@ -114,6 +127,9 @@ ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer
   size_t looked_up = 0;
   std::vector<double> faces_t, render_t, filter_t, map_t, lookup_t;
   const int repeats = std::max(1, options.repeats);
+  // Stage 2 also finds the tiles the lookups read when the filter filters only those.
+  const MapFilterOps& ops = map_filter_ops(p.filter);
+  const bool by_tiles = ops.by_tiles && ops.by_tiles(p);
   // Long builds show a progress line (stderr terminal only; it touches no result).
   ProgressLine progress("light map", size_t(repeats) * 3,
                         options.progress && light_map_needs_progress(p, map.layout));
@@ -126,6 +142,9 @@ ShadowResult run_light_map(const MapParams& p, const Scene& scene, const GBuffer
     render_t.push_back(ms_since(t0));
     progress.advance();
     t0 = std::chrono::steady_clock::now();
+    // The tiles the lookups read are the filter's to find (stage 2's second answer, only the
+    // filter uses it), so their time counts as the filter's.
+    if (by_tiles) map.tiles = texel_tiles_needed(scene, gbuffer, map.layout, p, needed);
     filter_light_map(p, map);
     filter_t.push_back(ms_since(t0));
     progress.advance();

@@ -18,6 +18,7 @@
 #include "techniques/map_params.h"
 #include "techniques/moment_filter.h"
 #include "techniques/technique.h"
+#include "techniques/texel_tiles.h"
 
 namespace shadowlab {
 
@@ -31,8 +32,16 @@ struct LightMap {
   FaceLayout layout;
   FaceDistances dist;
   std::vector<std::vector<float>> a, max_depth;
+  // Stage 2's tiles per face for a filter that filters by tiles (MapFilterOps::by_tiles); empty:
+  // every texel is filtered.
+  std::vector<FaceTiles> tiles;
   FilterScratch scratch;  // the max filter's, reused by every face and every rebuild
 };
+
+// Face f's tiles for the filter, or nullptr for every texel.
+inline const FaceTiles* face_tiles(const LightMap& map, size_t f) {
+  return map.tiles.empty() ? nullptr : &map.tiles[f];
+}
 
 // The layout of a technique's params (the projector's needs scene.projector).
 FaceLayout map_layout(const MapParams& p, const Scene& scene);

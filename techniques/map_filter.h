@@ -26,7 +26,8 @@ struct MapFilterOps {
   void (*parse_keys)(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
   // "key=default,…" of the filter's own keys, from the defaults in p.
   std::string (*keys_text)(const MapParams& p);
-  // Stages 4–5: the filter's transform and blur of the rendered faces into map.a/b/max_depth.
+  // Stages 4–5: the filter's transform and blur of the rendered faces into map.a/max_depth
+  // (only map.tiles' tiles when by_tiles says so and map.tiles is not empty).
   void (*filter)(const MapParams& p, LightMap& map);
   // Stage 6: every GBuffer pixel's visibility (and texel index when texels is given).
   void (*lookup)(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
@@ -36,6 +37,10 @@ struct MapFilterOps {
   uint64_t (*taps_per_lookup)(const MapParams& p);
   uint64_t (*tap_bytes)(const MapParams& p);
   uint64_t (*stored_planes)(const MapParams& p);
+  // True when the filter (stage 5) transforms and blurs only the tiles stage 2 found read by some
+  // lookup (map.tiles, techniques/texel_tiles.h) under these params; nullptr: never (no filter,
+  // or one that reads the whole face).
+  bool (*by_tiles)(const MapParams& p);
 };
 
 extern const MapFilterOps kDepthCompare;     // sm:  depth compare with PCF

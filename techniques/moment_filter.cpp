@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
+#include "techniques/texel_tiles.h"
 
 namespace shadowlab {
 namespace {
@@ -208,13 +209,30 @@ SL_ROW_CLONES void esm_log_row(const double* filtered, int w, double c, double d
   for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_d(filtered[x]));
 }
 
-// Fills the r texels on each side of an extended row with its edge values (clamp to edge).
+// Output columns [x0, x0 + n) of a row and the input columns their k-wide windows read:
+// [in0, in0 + in_n) of the image (clipped to it), placed at ext[lead ..] of the extended row,
+// whose positions before lead and from lead + in_n on repeat the image's edge texels (clamp to
+// edge). The whole row: x0 = 0, n = w, in0 = 0, in_n = w, lead = k/2.
+struct SpanCols {
+  int x0, n, in0, in_n, lead;
+};
+
+SpanCols span_cols(const TexelSpan& s, int w, int r) {
+  SpanCols c;
+  c.x0 = s.x0;
+  c.n = s.x1 - s.x0;
+  c.in0 = std::max(0, s.x0 - r);
+  c.in_n = std::min(w, s.x1 + r) - c.in0;
+  c.lead = c.in0 - (s.x0 - r);
+  return c;
+}
+
+// Fills the clamped positions of a span's extended row (n + k − 1 values) from its edge values.
 template <class T>
-inline void extend_row(T* ext, int w, int r) {
-  for (int i = 0; i < r; ++i) {
-    ext[i] = ext[r];
-    ext[size_t(w + r + i)] = ext[size_t(w + r - 1)];
-  }
+inline void extend_span(T* ext, const SpanCols& c, int k) {
+  for (int i = 0; i < c.lead; ++i) ext[i] = ext[c.lead];
+  const int end = c.lead + c.in_n, total = c.n + k - 1;
+  for (int i = end; i < total; ++i) ext[i] = ext[end - 1];
 }
 
 // Kernels for the common box widths with k a compile-time constant, so each x iteration keeps
@@ -351,22 +369,25 @@ SL_ROW_CLONES float row_min_dist(const float* row, int w) {
   return m;
 }
 
-// The clamped finite row of VSM's kernels: ext[i] = finite_dist(row[clamp(i − r)]).
-SL_ROW_CLONES void finite_ext_row(const float* row, int w, int r, float* ext) {
-  for (int x = 0; x < w; ++x) ext[x + r] = finite_dist_bits(row[x]);
-  extend_row(ext, w, r);
+// The finite values of a row's n texels: out[x] = finite_dist(row[x]) (VSM's kernels' input).
+SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
+  for (int x = 0; x < n; ++x) out[x] = finite_dist_bits(row[x]);
 }
 
-// The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per chunk of
-// output rows: hrow(y, dst, ext) writes input row y's horizontal sums (dst[c]: w doubles of
-// plane c; ext: scratch of planes × (w + k − 1) doubles); out_row(y, window, out) receives,
-// plane after plane, the k rows' pointers of output row y's vertical window (rows clamped to
-// the image) in top-to-bottom order, and scratch of (planes + 1) × w doubles. Each input row's sums are
-// computed once per chunk (plus k − 1 rows shared with the next chunk) and stay in cache.
+// The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per span of
+// output columns in each band of 32 output rows (kTexelTile: one span over the whole width
+// without `tiles`, else the needed tiles' runs, tile_spans): hrow(y, span, dst, ext) writes input
+// row y's horizontal sums over the span's columns (dst[c]: span.n doubles of plane c; ext:
+// scratch of planes × (w + k − 1) doubles); out_row(y, span, window, out) receives, plane after
+// plane, the k rows' pointers of output row y's vertical window (rows clamped to the image) in
+// top-to-bottom order, and scratch of (planes + 1) × w doubles. Each input row's sums are
+// computed once per band and span (plus k − 1 rows shared with the next band) and stay in cache.
 template <class HRow, class OutRow>
-void fused_box(int w, int h, int k, int planes, const HRow& hrow, const OutRow& out_row) {
+void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const HRow& hrow,
+               const OutRow& out_row) {
   const int r = k / 2;
-  parallel_for_chunks(size_t(h), 32, [&](size_t b, size_t e) {
+  const int bands = (h + kTexelTile - 1) / kTexelTile;
+  parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
     // One uninitialized block: every value is written before it is read.
     const size_t row_len = size_t(w), ew = size_t(w) + size_t(k) - 1;
     const size_t n_ring = size_t(k) * size_t(planes) * row_len;
@@ -379,17 +400,25 @@ void fused_box(int w, int h, int k, int planes, const HRow& hrow, const OutRow& 
     };
     std::vector<double*> dst(static_cast<size_t>(planes));
     std::vector<const double*> window(size_t(planes) * size_t(k));
-    int next = std::max(0, int(b) - r);
-    for (size_t y = b; y < e; ++y) {
-      const int last = std::min(h - 1, int(y) + r);
-      for (; next <= last; ++next) {
-        for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
-        hrow(next, dst.data(), ext);
+    std::vector<TexelSpan> spans;
+    for (size_t band = b0; band < b1; ++band) {
+      tile_spans(tiles, int(band), w, spans);
+      const int y0 = int(band) * kTexelTile, y1 = std::min(h, y0 + kTexelTile);
+      for (const TexelSpan& span : spans) {
+        const SpanCols cols = span_cols(span, w, r);
+        int next = std::max(0, y0 - r);
+        for (int y = y0; y < y1; ++y) {
+          const int last = std::min(h - 1, y + r);
+          for (; next <= last; ++next) {
+            for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
+            hrow(next, cols, dst.data(), ext);
+          }
+          for (int c = 0; c < planes; ++c)
+            for (int j = -r; j <= r; ++j)
+              window[size_t(c) * size_t(k) + size_t(j + r)] = slot(std::clamp(y + j, 0, h - 1), c);
+          out_row(y, cols, window.data(), out);
+        }
       }
-      for (int c = 0; c < planes; ++c)
-        for (int j = -r; j <= r; ++j)
-          window[size_t(c) * size_t(k) + size_t(j + r)] = slot(std::clamp(int(y) + j, 0, h - 1), c);
-      out_row(int(y), window.data(), out);
     }
   });
 }
@@ -419,74 +448,77 @@ struct MeanVarOut {
   int stride;
 };
 
-// Row y's mean and variance floats through write(mean_row, var_row): straight into the planes,
-// or (stride 2 or 4) into `scratch` (2·w floats) and then interleaved (stride 4: into two of each
-// texel's four slots; EVSM4 writes its two warps' pairs side by side).
+// Row y's mean and variance floats of the span's columns through write(mean_row, var_row):
+// straight into the planes, or (stride 2 or 4) into `scratch` (2·n floats) and then interleaved
+// (stride 4: into two of each texel's four slots; EVSM4 writes its two warps' pairs side by
+// side).
 template <class Write>
-void write_mean_var(const MeanVarOut& o, int w, int y, float* scratch, const Write& write) {
-  const size_t at = size_t(y) * size_t(w) * size_t(o.stride);
+void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float* scratch,
+                    const Write& write) {
+  const size_t at = (size_t(y) * size_t(w) + size_t(s.x0)) * size_t(o.stride);
+  const int n = s.n;
   if (o.stride == 1) {
     write(o.mean + at, o.var + at);
     return;
   }
-  write(scratch, scratch + w);
+  write(scratch, scratch + n);
   if (o.stride == 2) {
-    interleave_row(scratch, scratch + w, w, o.mean + at);
+    interleave_row(scratch, scratch + n, n, o.mean + at);
     return;
   }
   float* const row = o.mean + at;
-  for (int x = 0; x < w; ++x) {
+  for (int x = 0; x < n; ++x) {
     row[size_t(o.stride) * size_t(x)] = scratch[x];
-    row[size_t(o.stride) * size_t(x) + 1] = scratch[size_t(w) + size_t(x)];
+    row[size_t(o.stride) * size_t(x) + 1] = scratch[size_t(n) + size_t(x)];
   }
 }
 
-// Filtered mean and centred variance of a two-plane row maker: make_row(y, ext) fills plane 0
-// at ext and plane 1 at ext + (w + k − 1), each extended by k/2 clamped texels on both sides.
+// Filtered mean and centred variance of a two-plane row maker: make_row(y, cols, ext) fills
+// plane 0 at ext and plane 1 at ext + (w + k − 1) with the span's extended row (cols.n + k − 1
+// values: SpanCols).
 // With `fixed` and a compiled width, the fixed-width kernels; else the runtime-k loops (their
 // oracle): the same additions in the same order either way.
 template <class MakeRow>
-void box_mean_variance(int w, int h, int k, bool fixed, const MakeRow& make_row,
-                       const MeanVarOut& o) {
+void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles,
+                       const MakeRow& make_row, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
   if (fixed && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 2,
-            [&](int y, double* const* dst, double* ext) {
-              make_row(y, ext);
-              hsum_k<K>(ext, w, dst[0]);
-              hsum_k<K>(ext + ew, w, dst[1]);
+            w, h, k, 2, tiles,
+            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+              make_row(y, s, ext);
+              hsum_k<K>(ext, s.n, dst[0]);
+              hsum_k<K>(ext + ew, s.n, dst[1]);
             },
-            [&](int y, const double* const* win, double* scratch) {
-              write_mean_var(o, w, y, reinterpret_cast<float*>(scratch), [&](float* m, float* v) {
-                vsm_out_k<K>(win, w, inv, m, v);
-              });
+            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+              write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
+                             [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
             });
       }))
     return;
   fused_box(
-      w, h, k, 2,
-      [&](int y, double* const* dst, double* ext) {
-        make_row(y, ext);
-        hsum_row(ext, w, k, dst[0]);
-        hsum_row(ext + ew, w, k, dst[1]);
+      w, h, k, 2, tiles,
+      [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+        make_row(y, s, ext);
+        hsum_row(ext, s.n, k, dst[0]);
+        hsum_row(ext + ew, s.n, k, dst[1]);
       },
-      [&](int y, const double* const* win, double* out) {
-        vsum_rows(win, w, k, inv, out);
-        vsum_rows(win + k, w, k, inv, out + w);
+      [&](int y, const SpanCols& s, const double* const* win, double* out) {
+        vsum_rows(win, s.n, k, inv, out);
+        vsum_rows(win + k, s.n, k, inv, out + w);
         // out holds the two summed rows (2·w doubles); the floats go after them in the
         // planes' scratch only when interleaving, so use a row of their own.
         float* const tmp = reinterpret_cast<float*>(out + 2 * size_t(w));
-        write_mean_var(o, w, y, tmp, [&](float* m, float* v) {
-          mean_variance_row(out, out + w, w, m, v);
+        write_mean_var(o, w, y, s, tmp, [&](float* m, float* v) {
+          mean_variance_row(out, out + w, s.n, m, v);
         });
       });
 }
 
 void moments_double(const float* dist, int w, int h, int k, bool slope_term, bool fixed_kernels,
-                    const MeanVarOut& o) {
+                    const FaceTiles* tiles, const MeanVarOut& o) {
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
@@ -494,16 +526,16 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
   if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 2,
-            [&](int y, double* const* dst, double* ext) {
+            w, h, k, 2, tiles,
+            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
               float* const ext_f = reinterpret_cast<float*>(ext);
-              finite_ext_row(dist + size_t(y) * size_t(w), w, r, ext_f);
-              hsum_moments_k<K>(ext_f, w, dst[0], dst[1]);
+              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
+              extend_span(ext_f, s, k);
+              hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
             },
-            [&](int y, const double* const* win, double* scratch) {
-              write_mean_var(o, w, y, reinterpret_cast<float*>(scratch), [&](float* m, float* v) {
-                vsm_out_k<K>(win, w, inv, m, v);
-              });
+            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+              write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
+                             [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
             });
       }))
     return;
@@ -512,24 +544,25 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
                                    size_t(std::clamp(x, 0, w - 1))]));
   };
   box_mean_variance(
-      w, h, k, fixed_kernels,
-      [&](int y, double* ext) {
+      w, h, k, fixed_kernels, tiles,
+      [&](int y, const SpanCols& s, double* ext) {
         if (!slope_term) {
-          moment_row(dist + size_t(y) * size_t(w), w, ext + r, ext + ew + size_t(r));
-          extend_row(ext, w, r);
-          extend_row(ext + ew, w, r);
+          moment_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead,
+                     ext + ew + size_t(s.lead));
+          extend_span(ext, s, k);
+          extend_span(ext + ew, s, k);
           return;
         }
-        // raw_moments' values of row y, extended by r clamped texels on each side.
-        for (int x = -r; x < w + r; ++x) {
+        // raw_moments' values of row y's columns [x0 − r, x0 + n + r), clamped to the image.
+        for (int x = s.x0 - r; x < s.x0 + s.n + r; ++x) {
           const double d = at(x, y);
           double m2 = d * d;
           const int xc = std::clamp(x, 0, w - 1);
           const double dx = min_diff(at(xc - 1, y), d, at(xc + 1, y));
           const double dy = min_diff(at(xc, y - 1), d, at(xc, y + 1));
           m2 += double(0.25 * (dx * dx + dy * dy));
-          ext[size_t(x + r)] = d;
-          ext[ew + size_t(x + r)] = m2;
+          ext[size_t(x - (s.x0 - r))] = d;
+          ext[ew + size_t(x - (s.x0 - r))] = m2;
         }
       },
       o);
@@ -552,32 +585,34 @@ MeanVarOut interleaved_out(int w, int h, std::vector<float>& mv) {
 }  // namespace
 
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
-                           std::vector<float>& mean, std::vector<float>& variance) {
-  moments_double(dist, w, h, k, slope_term, true, planes_out(w, h, mean, variance));
+                           std::vector<float>& mean, std::vector<float>& variance,
+                           const FaceTiles* tiles) {
+  moments_double(dist, w, h, k, slope_term, true, tiles, planes_out(w, h, mean, variance));
 }
 
 void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
-                                  std::vector<float>& mean, std::vector<float>& variance) {
-  moments_double(dist, w, h, k, slope_term, false, planes_out(w, h, mean, variance));
+                                  std::vector<float>& mean, std::vector<float>& variance,
+                                  const FaceTiles* tiles) {
+  moments_double(dist, w, h, k, slope_term, false, tiles, planes_out(w, h, mean, variance));
 }
 
 void filter_moments_double_interleaved(const float* dist, int w, int h, int k, bool slope_term,
-                                       std::vector<float>& mean_variance) {
-  moments_double(dist, w, h, k, slope_term, true, interleaved_out(w, h, mean_variance));
+                                       std::vector<float>& mean_variance, const FaceTiles* tiles) {
+  moments_double(dist, w, h, k, slope_term, true, tiles, interleaved_out(w, h, mean_variance));
 }
 
 namespace {
 
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
-                    bool fixed_kernels, const MeanVarOut& o) {
-  const int r = k / 2;
+                    bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
   box_mean_variance(
-      w, h, k, fixed_kernels,
-      [&](int y, double* ext) {
-        warped_row(dist + size_t(y) * size_t(w), w, c, sign, ext + r, ext + ew + size_t(r));
-        extend_row(ext, w, r);
-        extend_row(ext + ew, w, r);
+      w, h, k, fixed_kernels, tiles,
+      [&](int y, const SpanCols& s, double* ext) {
+        warped_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign, ext + s.lead,
+                   ext + ew + size_t(s.lead));
+        extend_span(ext, s, k);
+        extend_span(ext + ew, s, k);
       },
       o);
 }
@@ -585,98 +620,103 @@ void warped_moments(const float* dist, int w, int h, int k, double c, double sig
 }  // namespace
 
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
-                           std::vector<float>& mean, std::vector<float>& variance) {
-  warped_moments(dist, w, h, k, c, sign, true, planes_out(w, h, mean, variance));
+                           std::vector<float>& mean, std::vector<float>& variance,
+                           const FaceTiles* tiles) {
+  warped_moments(dist, w, h, k, c, sign, true, tiles, planes_out(w, h, mean, variance));
 }
 
 void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, double c,
                                        double sign, int stride, int first,
-                                       std::vector<float>& out) {
+                                       std::vector<float>& out, const FaceTiles* tiles) {
   SL_CHECK((stride == 2 && first == 0) || (stride == 4 && (first == 0 || first == 2)));
   const size_t n = size_t(w) * size_t(h) * size_t(stride);
   if (out.size() != n) out.resize(n);
   float* const base = out.data() + first;
-  warped_moments(dist, w, h, k, c, sign, true, {base, base + 1, stride});
+  warped_moments(dist, w, h, k, c, sign, true, tiles, {base, base + 1, stride});
 }
 
 void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,
                                   double sign, std::vector<float>& mean,
-                                  std::vector<float>& variance) {
-  warped_moments(dist, w, h, k, c, sign, false, planes_out(w, h, mean, variance));
+                                  std::vector<float>& variance, const FaceTiles* tiles) {
+  warped_moments(dist, w, h, k, c, sign, false, tiles, planes_out(w, h, mean, variance));
 }
 
 namespace {
 
-// Plane c's filtered row y goes to row_of(c, y, tmp): a row of out[c], or (interleaved given)
-// the c-th of four w-float rows in tmp, which finish(y, tmp) then interleaves into row y.
+// Plane c's filtered row y (a span's columns) goes to row_of(c, y, span, tmp): a row of out[c],
+// or (interleaved given) the c-th of four span.n-float rows in tmp, which finish(y, span, tmp)
+// then interleaves into row y.
 void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
-                   std::vector<float>* out, std::vector<float>* interleaved) {
+                   const FaceTiles* tiles, std::vector<float>* out,
+                   std::vector<float>* interleaved) {
   const size_t n = size_t(w) * size_t(h);
   if (interleaved)
     interleaved->resize(4 * n);
   else
     for (int c = 0; c < 4; ++c) out[c].resize(n);
-  const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
-  auto make_row = [&](int y, double* ext) {
-    power_row(dist + size_t(y) * size_t(w), w, ew, ext + r);
-    for (int c = 0; c < 4; ++c) extend_row(ext + size_t(c) * ew, w, r);
+  auto make_row = [&](int y, const SpanCols& s, double* ext) {
+    power_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ew, ext + s.lead);
+    for (int c = 0; c < 4; ++c) extend_span(ext + size_t(c) * ew, s, k);
   };
-  // Plane c's row y: in the plane, or (interleaving) in tmp's c-th row of w floats.
-  auto row_of = [&](int c, int y, float* tmp) {
-    return interleaved ? tmp + size_t(c) * size_t(w) : out[c].data() + size_t(y) * size_t(w);
+  // Plane c's row y: in the plane, or (interleaving) in tmp's c-th row of s.n floats.
+  auto row_of = [&](int c, int y, const SpanCols& s, float* tmp) {
+    return interleaved ? tmp + size_t(c) * size_t(s.n)
+                       : out[c].data() + size_t(y) * size_t(w) + size_t(s.x0);
   };
-  auto finish = [&](int y, const float* tmp) {
+  auto finish = [&](int y, const SpanCols& s, const float* tmp) {
     if (interleaved)
-      interleave4_row(tmp, w, interleaved->data() + 4 * size_t(y) * size_t(w));
+      interleave4_row(tmp, s.n, interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0)));
   };
   if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 4,
-            [&](int y, double* const* dst, double* ext) {
-              make_row(y, ext);
-              for (int c = 0; c < 4; ++c) hsum_k<K>(ext + size_t(c) * ew, w, dst[c]);
+            w, h, k, 4, tiles,
+            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+              make_row(y, s, ext);
+              for (int c = 0; c < 4; ++c) hsum_k<K>(ext + size_t(c) * ew, s.n, dst[c]);
             },
-            [&](int y, const double* const* win, double* scratch) {
-              float* const tmp = reinterpret_cast<float*>(scratch);  // 4·w of its 10·w floats
-              for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, w, inv, row_of(c, y, tmp));
-              finish(y, tmp);
+            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+              float* const tmp = reinterpret_cast<float*>(scratch);  // 4·n of its 10·w floats
+              for (int c = 0; c < 4; ++c)
+                mean_out_k<K>(win + c * K, s.n, inv, row_of(c, y, s, tmp));
+              finish(y, s, tmp);
             });
       }))
     return;
   fused_box(
-      w, h, k, 4,
-      [&](int y, double* const* dst, double* ext) {
-        make_row(y, ext);
-        for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, w, k, dst[c]);
+      w, h, k, 4, tiles,
+      [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+        make_row(y, s, ext);
+        for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, s.n, k, dst[c]);
       },
-      [&](int y, const double* const* win, double* m) {
-        // m: w doubles of sums, then 4·w floats (2·w doubles) of interleaving rows.
+      [&](int y, const SpanCols& s, const double* const* win, double* m) {
+        // m: w doubles of sums, then 4·n floats (at most 2·w doubles) of interleaving rows.
         float* const tmp = reinterpret_cast<float*>(m + size_t(w));
         for (int c = 0; c < 4; ++c) {
-          vsum_rows(win + c * k, w, k, inv, m);
-          float_row(m, w, row_of(c, y, tmp));
+          vsum_rows(win + c * k, s.n, k, inv, m);
+          float_row(m, s.n, row_of(c, y, s, tmp));
         }
-        finish(y, tmp);
+        finish(y, s, tmp);
       });
 }
 
 }  // namespace
 
-void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out) {
-  power_moments(dist, w, h, k, true, out, nullptr);
+void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out,
+                          const FaceTiles* tiles) {
+  power_moments(dist, w, h, k, true, tiles, out, nullptr);
 }
 
 void filter_power_moments_interleaved(const float* dist, int w, int h, int k,
-                                      std::vector<float>& moments) {
-  power_moments(dist, w, h, k, true, nullptr, &moments);
+                                      std::vector<float>& moments, const FaceTiles* tiles) {
+  power_moments(dist, w, h, k, true, tiles, nullptr, &moments);
 }
 
 void filter_power_moments_oracle(const float* dist, int w, int h, int k,
-                                 std::vector<float>* out) {
-  power_moments(dist, w, h, k, false, out, nullptr);
+                                 std::vector<float>* out, const FaceTiles* tiles) {
+  power_moments(dist, w, h, k, false, tiles, out, nullptr);
 }
 
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
@@ -718,58 +758,64 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 namespace {
 
 void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernels,
-             std::vector<float>& out) {
+             const FaceTiles* tiles, const float* face_min, std::vector<float>& out) {
   const size_t n = size_t(w) * size_t(h);
-  // The image's smallest distance, a fixed-order reduction over per-row minima.
-  std::vector<float> row_min(static_cast<size_t>(h));
-  parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
-    for (size_t y = b; y < e; ++y) {
-      row_min[y] = row_min_dist(dist + y * size_t(w), w);
-    }
-  });
+  // The image's smallest finite distance (1 when none is smaller): from the caller, or a
+  // fixed-order reduction over per-row minima.
   double d_min = 1.0;
-  for (float m : row_min) d_min = std::min(d_min, double(m));
+  if (face_min) {
+    d_min = *face_min < 1.0f ? double(*face_min) : 1.0;
+  } else {
+    std::vector<float> row_min(static_cast<size_t>(h));
+    parallel_for_chunks(size_t(h), 16, [&](size_t b, size_t e) {
+      for (size_t y = b; y < e; ++y) row_min[y] = row_min_dist(dist + y * size_t(w), w);
+    });
+    for (float m : row_min) d_min = std::min(d_min, double(m));
+  }
   out.resize(n);
-  const int r = k / 2;
   const double inv = 1.0 / double(k * k);
-  auto exp_row = [&](int y, double* ext) {
-    esm_exp_row(dist + size_t(y) * size_t(w), w, c, d_min, ext + r);
-    extend_row(ext, w, r);
+  auto exp_row = [&](int y, const SpanCols& s, double* ext) {
+    esm_exp_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, d_min, ext + s.lead);
+    extend_span(ext, s, k);
+  };
+  auto out_at = [&](int y, const SpanCols& s) {
+    return out.data() + size_t(y) * size_t(w) + size_t(s.x0);
   };
   const bool fixed = fixed_kernels && with_fixed_width(k, [&](auto kc) {
     constexpr int K = decltype(kc)::value;
     fused_box(
-        w, h, k, 1,
-        [&](int y, double* const* dst, double* ext) {
-          exp_row(y, ext);
-          hsum_k<K>(ext, w, dst[0]);
+        w, h, k, 1, tiles,
+        [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+          exp_row(y, s, ext);
+          hsum_k<K>(ext, s.n, dst[0]);
         },
-        [&](int y, const double* const* win, double*) {
-          esm_out_k<K>(win, w, inv, c, d_min, out.data() + size_t(y) * size_t(w));
+        [&](int y, const SpanCols& s, const double* const* win, double*) {
+          esm_out_k<K>(win, s.n, inv, c, d_min, out_at(y, s));
         });
   });
   if (fixed) return;
   fused_box(
-      w, h, k, 1,
-      [&](int y, double* const* dst, double* ext) {
-        exp_row(y, ext);
-        hsum_row(ext, w, k, dst[0]);
+      w, h, k, 1, tiles,
+      [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+        exp_row(y, s, ext);
+        hsum_row(ext, s.n, k, dst[0]);
       },
-      [&](int y, const double* const* win, double* filtered) {
-        vsum_rows(win, w, k, inv, filtered);
-        esm_log_row(filtered, w, c, d_min, out.data() + size_t(y) * size_t(w));
+      [&](int y, const SpanCols& s, const double* const* win, double* filtered) {
+        vsum_rows(win, s.n, k, inv, filtered);
+        esm_log_row(filtered, s.n, c, d_min, out_at(y, s));
       });
 }
 
 }  // namespace
 
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out) {
-  esm_log(dist, w, h, k, c, true, out);
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
+                    const FaceTiles* tiles, const float* face_min) {
+  esm_log(dist, w, h, k, c, true, tiles, face_min, out);
 }
 
 void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
-                           std::vector<float>& out) {
-  esm_log(dist, w, h, k, c, false, out);
+                           std::vector<float>& out, const FaceTiles* tiles) {
+  esm_log(dist, w, h, k, c, false, tiles, nullptr, out);
 }
 
 }  // namespace shadowlab

@@ -9,6 +9,8 @@
 
 namespace shadowlab {
 
+struct FaceTiles;  // techniques/texel_tiles.h
+
 // Working storage of the max filter, kept by the caller across calls so that repeated builds
 // reuse their memory (fresh pages cost ~20 µs each on the VMs we measure on). The moment and
 // ESM filters need none: they work per chunk of rows in small buffers of their own.
@@ -22,12 +24,19 @@ struct FilterScratch {
 // slope_term adds ¼((∂d/∂x)² + (∂d/∂y)²) per texel to E[d²] (Krave), with each derivative the
 // smaller-magnitude one-sided difference (so a silhouette's jump does not count).
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
-                           std::vector<float>& mean, std::vector<float>& variance);
+                           std::vector<float>& mean, std::vector<float>& variance,
+                           const FaceTiles* tiles = nullptr);
 // filter_moments_double's values in one interleaved plane: texel i's mean at mean_variance[2i],
 // its variance at [2i + 1] (the VSM lookup's storage: one load fetches both of a tap's values,
 // and a bilinear footprint row touches one cache line instead of two).
 void filter_moments_double_interleaved(const float* dist, int w, int h, int k, bool slope_term,
-                                       std::vector<float>& mean_variance);
+                                       std::vector<float>& mean_variance,
+                                       const FaceTiles* tiles = nullptr);
+// The functions below but the fp32 and max filters take `tiles` (nullptr: every texel): with
+// it they write only the texels of the needed tiles (techniques/texel_tiles.h), each with the
+// bits the whole image's filter gives it (the same inputs through the same additions: a tile's
+// windows read its neighbours' unfiltered distances, clamped at the image's edges only), and
+// leave the other texels as they were.
 // The naive form, kept to measure it: (d, d²) summed and stored in float.
 void filter_moments_fp32(const float* dist, int w, int h, int k, bool slope_term,
                          std::vector<float>& m1, std::vector<float>& m2);
@@ -40,43 +49,50 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // (finite in double for c <= 709) and no sum cancels; the naive fp32 exp(c·d) overflows once
 // c·d > 88.7. exp and ln are core/exp_log.h's (within 2 ulp, vectorized, the same bits on any
 // x86-64).
-void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out);
+// face_min: the smallest of the w × h distances (FaceDistances::min_distance), which saves the
+// filter a pass over the whole image; nullptr: the filter finds it (the oracle always does).
+void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,
+                    const FaceTiles* tiles = nullptr, const float* face_min = nullptr);
 
 // EVSM's warped moments (Lauritzen & McCool 2008): v = sign·e^(sign·c·(2d − 1)) per texel
 // (d = the distance with "nothing seen" as 1, warped to [−1, 1]; sign +1 the positive warp,
 // −1 the negative one), box-filtered in double and stored as mean and variance floats like
 // filter_moments_double. |v| <= e^c and v² <= e^(2c): finite in float for c <= 44.36.
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
-                           std::vector<float>& mean, std::vector<float>& variance);
+                           std::vector<float>& mean, std::vector<float>& variance,
+                           const FaceTiles* tiles = nullptr);
 // filter_warped_moments' values in an interleaved plane of `stride` floats per texel (texel i's
 // mean at out[stride·i + first], variance at + 1; stride 2 with first 0, or stride 4 with first 0
 // or 2, so EVSM4 keeps both warps' pairs of a texel in 16 bytes), the EVSM lookup's storage.
 // out is resized to stride·w·h floats when its size differs (the other slots are kept).
 void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, double c,
-                                       double sign, int stride, int first,
-                                       std::vector<float>& out);
+                                       double sign, int stride, int first, std::vector<float>& out,
+                                       const FaceTiles* tiles = nullptr);
 
 // MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
 // "nothing seen" as 1), box-filtered in double and stored as floats in out[0..3].
-void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out);
+void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out,
+                          const FaceTiles* tiles = nullptr);
 // filter_power_moments' values in one interleaved plane: texel i's E[d^(c+1)] at moments[4i + c]
 // (the MSM lookup's storage: one 32-byte load per tap row fetches both taps' four moments).
 void filter_power_moments_interleaved(const float* dist, int w, int h, int k,
-                                      std::vector<float>& moments);
+                                      std::vector<float>& moments,
+                                      const FaceTiles* tiles = nullptr);
 
 // The filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
 // runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the
 // fixed-width kernels must equal bit for bit (tests/techniques/moment_filter_test.cpp).
 void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
-                                  std::vector<float>& mean, std::vector<float>& variance);
+                                  std::vector<float>& mean, std::vector<float>& variance,
+                                  const FaceTiles* tiles = nullptr);
 void filter_esm_log_oracle(const float* dist, int w, int h, int k, double c,
-                           std::vector<float>& out);
-void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c,
-                                  double sign, std::vector<float>& mean,
-                                  std::vector<float>& variance);
+                           std::vector<float>& out, const FaceTiles* tiles = nullptr);
+void filter_warped_moments_oracle(const float* dist, int w, int h, int k, double c, double sign,
+                                  std::vector<float>& mean, std::vector<float>& variance,
+                                  const FaceTiles* tiles = nullptr);
 
-void filter_power_moments_oracle(const float* dist, int w, int h, int k,
-                                 std::vector<float>* out);
+void filter_power_moments_oracle(const float* dist, int w, int h, int k, std::vector<float>* out,
+                                 const FaceTiles* tiles = nullptr);
 
 }  // namespace shadowlab

@@ -65,14 +65,28 @@ void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     const LightFace& face = map.layout.faces[f];
+    const FaceTiles* tiles = face_tiles(map, f);
     filter_power_moments_interleaved(map.dist.distance[f].data(), face.width, face.height,
-                                     p.blur, map.a[f]);
+                                     p.blur, map.a[f], tiles);
     if (!p.msm.quantize16) continue;
-    const size_t n = map.a[f].size() / 4;
+    // The filtered texels' moments through the 16-bit store, band by band.
     float* const mv = map.a[f].data();
-    parallel_for_chunks(n, 16384, [&](size_t b, size_t e) { quantize16(e - b, mv + 4 * b); });
+    const int bands = (face.height + kTexelTile - 1) / kTexelTile;
+    parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
+      std::vector<TexelSpan> spans;
+      for (size_t band = b0; band < b1; ++band) {
+        tile_spans(tiles, int(band), face.width, spans);
+        const int y1 = std::min(face.height, int(band + 1) * kTexelTile);
+        for (int y = int(band) * kTexelTile; y < y1; ++y)
+          for (const TexelSpan& s : spans)
+            quantize16(size_t(s.x1 - s.x0),
+                       mv + 4 * (size_t(y) * size_t(face.width) + size_t(s.x0)));
+      }
+    });
   }
 }
+
+bool by_tiles(const MapParams&) { return true; }
 
 struct MsmConsts {
   double alpha;
@@ -186,6 +200,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 const MapFilterOps kMomentShadowMap = {
     "msm", "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
     msm_filter::parse_keys, msm_filter::keys_text, msm_filter::filter, msm_filter::lookup,
-    msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes};
+    msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes,
+    msm_filter::by_tiles};
 
 }  // namespace shadowlab

@@ -55,12 +55,15 @@ void filter(const MapParams& p, LightMap& map) {
       }
     } else {
       filter_moments_double_interleaved(d, face.width, face.height, p.blur, p.vsm.slope_moment,
-                                        map.a[f]);
+                                        map.a[f], face_tiles(map, f));
     }
     if (p.vsm.maxdepth_eps > 0.0)
       filter_max(d, face.width, face.height, p.blur, map.max_depth[f], map.scratch);
   }
 }
+
+// The double filter goes by tiles; the fp32 measurement mode and the max filter read whole faces.
+bool by_tiles(const MapParams& p) { return !p.vsm.fp32 && !(p.vsm.maxdepth_eps > 0.0); }
 
 // Visibility from the 4 bilinear taps' values of the planes: A (mean, or m1 in fp32 mode),
 // B (variance, or m2), M (max depth; read only with maxdepth_eps > 0), weights from fx, fy.
@@ -233,6 +236,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 const MapFilterOps kVarianceMap = {
     "vsm", "variance shadow map", MapFilter::Variance,
     vsm_filter::parse_keys, vsm_filter::keys_text, vsm_filter::filter, vsm_filter::lookup,
-    vsm_filter::taps_per_lookup, vsm_filter::tap_bytes, vsm_filter::stored_planes};
+    vsm_filter::taps_per_lookup, vsm_filter::tap_bytes, vsm_filter::stored_planes,
+    vsm_filter::by_tiles};
 
 }  // namespace shadowlab

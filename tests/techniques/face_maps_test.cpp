@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "techniques/light_map.h"
 #include "techniques/map_receiver.h"
@@ -183,6 +184,44 @@ TEST(FaceMaps, BadParametersAreRejected) {
   }
   EXPECT_TRUE(std::isfinite(std::exp(2.0f * 44.36f)));
   EXPECT_FALSE(std::isfinite(std::exp(2.0f * 44.37f)));
+}
+
+}  // namespace
+}  // namespace shadowlab
+
+namespace shadowlab {
+namespace {
+
+// The render's per-face minimum (FaceDistances::min_distance, the ESM filter's shift) is the
+// smallest stored value of the face, found here by a plain loop: every layout, a face left
+// unrendered (+inf), and quantized storage (recomputed after the quantization).
+TEST(FaceMaps, RenderedMinimumIsTheSmallestStoredDistance) {
+  const Scene scene = test::small_scene("default", 96, 72);
+  for (const char* spec : {"csm:res=96", "tsm:res=64", "dsm:res=64", "csm:res=96,depth=8"}) {
+    SCOPED_TRACE(spec);
+    const TechniqueSpec s = parse_technique_spec(spec, "test");
+    const FaceLayoutKind kind = s.name[0] == 'c'   ? FaceLayoutKind::Cube
+                                : s.name[0] == 't' ? FaceLayoutKind::Tetrahedron
+                                                   : FaceLayoutKind::DualParaboloid;
+    const MapParams p = parse_map_params(s, kind, MapFilter::Depth, "test");
+    LightMap map;
+    map.layout = map_layout(p, scene);
+    std::vector<bool> needed(map.layout.faces.size(), true);
+    needed[1] = false;
+    render_light_map(scene, p, needed, map);
+    ASSERT_EQ(map.dist.min_distance.size(), needed.size());
+    int finite = 0;
+    for (size_t f = 0; f < needed.size(); ++f) {
+      if (!needed[f]) {
+        EXPECT_EQ(map.dist.min_distance[f], std::numeric_limits<float>::infinity());
+        continue;
+      }
+      const std::vector<float>& d = map.dist.distance[f];
+      EXPECT_EQ(map.dist.min_distance[f], *std::min_element(d.begin(), d.end())) << f;
+      finite += std::isfinite(map.dist.min_distance[f]);
+    }
+    EXPECT_GT(finite, 0);
+  }
 }
 
 }  // namespace

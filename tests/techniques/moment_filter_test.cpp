@@ -2,12 +2,14 @@
 // design notes name: VSM variance near d = 1 (fp32 cancellation) and ESM with c = 500.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
 
 #include "techniques/moment_filter.h"
+#include "techniques/texel_tiles.h"
 
 namespace shadowlab {
 namespace {
@@ -211,6 +213,121 @@ TEST(MomentFilter, MaxFilterIsTheWindowMaximum) {
           m = std::max(m, d[size_t(std::clamp(y + j, 0, h - 1)) * size_t(w) + size_t(std::clamp(x + i, 0, w - 1))]);
       EXPECT_EQ(out[size_t(y * w + x)], m);
     }
+}
+
+}  // namespace
+}  // namespace shadowlab
+
+namespace shadowlab {
+namespace {
+
+// Bits of texel i's `stride` floats at `at` of both arrays are equal.
+bool same_texel(const std::vector<float>& a, const std::vector<float>& b, size_t at, int n) {
+  return std::memcmp(&a[at], &b[at], size_t(n) * 4) == 0;
+}
+
+// Every filter run with tiles (techniques/texel_tiles.h) writes, on the texels of the needed
+// tiles, the whole image's bits, and leaves every other texel as it was (here 7): spans at the
+// image's left and right edges, in the partial last column and row of tiles, a lone tile, and a
+// tile row with no span; box widths 1, 3, 5 and 11 (k = 11: the runtime-width loops), the slope
+// moment, the oracles.
+TEST(MomentFilter, TiledFiltersWriteTheWholeImageBitsOnTheirTilesOnly) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.2f);
+  const int w = 100, h = 70;  // 4 × 3 tiles of 32, the last column and row partial
+  std::vector<float> d(size_t(w) * size_t(h));
+  for (float& v : d) v = u(rng);
+  d[7] = std::numeric_limits<float>::infinity();
+  FaceTiles tiles;
+  tiles.tiles_x = 4;
+  tiles.tiles_y = 3;
+  tiles.need = {1, 0, 0, 1,  //
+                0, 1, 0, 0,  //
+                1, 1, 1, 1};
+  auto needed = [&](size_t i) {
+    const int x = int(i % size_t(w)), y = int(i / size_t(w));
+    return tiles.need[size_t(y / 32) * 4 + size_t(x / 32)] != 0;
+  };
+  float face_min = std::numeric_limits<float>::infinity();
+  for (const float v : d) face_min = std::min(face_min, v);
+  size_t checked = 0;
+  // Runs fn(out, tiles) into fresh planes of `stride` floats per texel, filled with 7, with
+  // and without tiles, and compares texel by texel.
+  auto check = [&](const char* what, int stride, const auto& fn) {
+    SCOPED_TRACE(what);
+    std::vector<float> whole(size_t(stride) * d.size(), 7.0f), tiled = whole;
+    fn(whole, nullptr);
+    fn(tiled, &tiles);
+    ASSERT_EQ(whole.size(), tiled.size());
+    for (size_t i = 0; i < d.size(); ++i) {
+      if (needed(i)) {
+        ASSERT_TRUE(same_texel(whole, tiled, size_t(stride) * i, stride)) << "texel " << i;
+      } else {
+        for (int c = 0; c < stride; ++c) ASSERT_EQ(tiled[size_t(stride) * i + size_t(c)], 7.0f) << i;
+      }
+    }
+    ++checked;
+  };
+  for (const int k : {1, 3, 5, 11}) {
+    SCOPED_TRACE(k);
+    for (const bool slope : {false, true}) {
+      check("vsm interleaved", 2, [&](std::vector<float>& o, const FaceTiles* t) {
+        filter_moments_double_interleaved(d.data(), w, h, k, slope, o, t);
+      });
+      for (const bool oracle : {false, true}) {
+        auto planes = [&](std::vector<float>& o, const FaceTiles* t) {
+          std::vector<float> m(d.size(), 7.0f), v(d.size(), 7.0f);
+          if (oracle)
+            filter_moments_double_oracle(d.data(), w, h, k, slope, m, v, t);
+          else
+            filter_moments_double(d.data(), w, h, k, slope, m, v, t);
+          for (size_t i = 0; i < d.size(); ++i) {
+            o[2 * i] = m[i];
+            o[2 * i + 1] = v[i];
+          }
+        };
+        check(oracle ? "vsm oracle" : "vsm planes", 2, planes);
+      }
+    }
+    check("esm", 1, [&](std::vector<float>& o, const FaceTiles* t) {
+      filter_esm_log(d.data(), w, h, k, 200.0, o, t);
+    });
+    check("esm oracle", 1, [&](std::vector<float>& o, const FaceTiles* t) {
+      filter_esm_log_oracle(d.data(), w, h, k, 200.0, o, t);
+    });
+    // The render's minimum instead of the filter's own pass: the same bits.
+    check("esm face_min", 1, [&](std::vector<float>& o, const FaceTiles* t) {
+      if (t) {
+        filter_esm_log(d.data(), w, h, k, 200.0, o, t, &face_min);
+      } else {
+        filter_esm_log(d.data(), w, h, k, 200.0, o);
+      }
+    });
+    for (const double sign : {1.0, -1.0}) {
+      check("evsm stride 4", 4, [&](std::vector<float>& o, const FaceTiles* t) {
+        filter_warped_moments_interleaved(d.data(), w, h, k, 40.0, sign, 4, sign > 0 ? 0 : 2, o, t);
+      });
+      check("evsm oracle", 2, [&](std::vector<float>& o, const FaceTiles* t) {
+        std::vector<float> m(d.size(), 7.0f), v(d.size(), 7.0f);
+        filter_warped_moments_oracle(d.data(), w, h, k, 40.0, sign, m, v, t);
+        for (size_t i = 0; i < d.size(); ++i) {
+          o[2 * i] = m[i];
+          o[2 * i + 1] = v[i];
+        }
+      });
+    }
+    check("msm interleaved", 4, [&](std::vector<float>& o, const FaceTiles* t) {
+      filter_power_moments_interleaved(d.data(), w, h, k, o, t);
+    });
+    check("msm oracle", 4, [&](std::vector<float>& o, const FaceTiles* t) {
+      std::vector<float> pm[4];
+      for (auto& v : pm) v.assign(d.size(), 7.0f);
+      filter_power_moments_oracle(d.data(), w, h, k, pm, t);
+      for (size_t i = 0; i < d.size(); ++i)
+        for (int c = 0; c < 4; ++c) o[4 * i + size_t(c)] = pm[c][i];
+    });
+  }
+  EXPECT_EQ(checked, size_t(4 * (2 * 3 + 3 + 2 * 2 + 2)));
 }
 
 }  // namespace

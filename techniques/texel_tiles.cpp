@@ -1,0 +1,306 @@
+#include "techniques/texel_tiles.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "techniques/faces_needed.h"
+#include "techniques/map_lookup_simd.h"
+#include "techniques/map_receiver.h"
+
+namespace shadowlab {
+
+void tile_spans(const FaceTiles* tiles, int band, int w, std::vector<TexelSpan>& spans) {
+  spans.clear();
+  if (!tiles || tiles->every()) {
+    spans.push_back({0, w});
+    return;
+  }
+  const uint8_t* row = tiles->need.data() + size_t(band) * size_t(tiles->tiles_x);
+  for (int tx = 0; tx < tiles->tiles_x;) {
+    if (!row[tx]) {
+      ++tx;
+      continue;
+    }
+    const int start = tx;
+    while (tx < tiles->tiles_x && row[tx]) ++tx;
+    spans.push_back({start * kTexelTile, std::min(w, tx * kTexelTile)});
+  }
+}
+
+uint64_t tile_texels(const FaceTiles* tiles, int w, int h) {
+  if (!tiles || tiles->every()) return uint64_t(w) * uint64_t(h);
+  uint64_t n = 0;
+  for (int ty = 0; ty < tiles->tiles_y; ++ty) {
+    const uint64_t rows = uint64_t(std::min(h, (ty + 1) * kTexelTile) - ty * kTexelTile);
+    for (int tx = 0; tx < tiles->tiles_x; ++tx)
+      if (tiles->need[size_t(ty) * size_t(tiles->tiles_x) + size_t(tx)])
+        n += rows * uint64_t(std::min(w, (tx + 1) * kTexelTile) - tx * kTexelTile);
+  }
+  return n;
+}
+
+namespace {
+
+// Tiles for every face of the layout: needed faces' all unmarked (or, on the dual-paraboloid
+// layout, every tile), the others unmarked.
+std::vector<FaceTiles> empty_tiles(const FaceLayout& layout, const std::vector<bool>& faces) {
+  std::vector<FaceTiles> out(layout.faces.size());
+  for (size_t f = 0; f < out.size(); ++f) {
+    const LightFace& lf = layout.faces[f];
+    out[f].tiles_x = (lf.width + kTexelTile - 1) / kTexelTile;
+    out[f].tiles_y = (lf.height + kTexelTile - 1) / kTexelTile;
+    if (!(lf.paraboloid && faces[f]))
+      out[f].need.assign(size_t(out[f].tiles_x) * size_t(out[f].tiles_y), 0);
+  }
+  return out;
+}
+
+// Marks texels [x0, x1] × [y0, y1] (inclusive, inside the face) of face f. Threads mark the same
+// bytes concurrently, so through relaxed atomic stores; the result (a union) is read after the
+// parallel loop has joined.
+void mark_tiles(std::vector<FaceTiles>& tiles, int f, int tx0, int tx1, int ty0, int ty1) {
+  FaceTiles& t = tiles[size_t(f)];
+  if (t.every()) return;
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx) {
+      std::atomic_ref<uint8_t> cell(t.need[size_t(ty) * size_t(t.tiles_x) + size_t(tx)]);
+      if (!cell.load(std::memory_order_relaxed)) cell.store(1, std::memory_order_relaxed);
+    }
+}
+
+void mark_texels(std::vector<FaceTiles>& tiles, int f, int x0, int x1, int y0, int y1) {
+  mark_tiles(tiles, f, x0 / kTexelTile, x1 / kTexelTile, y0 / kTexelTile, y1 / kTexelTile);
+}
+
+// Inclusive texel bounds of a face's footprints, empty until grown.
+struct TexelRect {
+  int x0 = std::numeric_limits<int>::max(), x1 = -1, y0 = std::numeric_limits<int>::max(), y1 = -1;
+  bool empty() const { return x1 < x0 || y1 < y0; }
+  void grow(const Bilinear& b) {
+    x0 = std::min(x0, b.x0);
+    x1 = std::max(x1, b.x1);
+    y0 = std::min(y0, b.y0);
+    y1 = std::max(y1, b.y1);
+  }
+  uint64_t area() const { return empty() ? 0 : uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1); }
+};
+
+// The faces of a layout have at most 6 faces.
+constexpr int kMaxFaces = 6;
+
+struct PixelMarker {
+  const Scene& scene;
+  const GBuffer& g;
+  const FaceLayout& layout;
+  const MapParams& p;
+  std::vector<FaceTiles>& tiles;
+  Receivers8Fn receivers8 = nullptr;  // the lookups' AVX2 receivers (no normal offset)
+  MapLookupConsts consts;
+  ProjectorFrame frame;
+  float reach = 0.0f, inv_far = 0.0f;
+
+  PixelMarker(const Scene& s, const GBuffer& gb, const FaceLayout& l, const MapParams& mp,
+              std::vector<FaceTiles>& t)
+      : scene(s), g(gb), layout(l), p(mp), tiles(t) {
+    receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
+    if (receivers8) consts = map_lookup_consts(scene, layout, p, {});
+    if (layout.kind == FaceLayoutKind::Projector) frame = projector_frame(scene.projector);
+    reach = map_reach(p);
+    inv_far = 1.0f / scene.light.far;
+  }
+
+  // fn(face, footprint) for each looked-up pixel of [b, e), from the receiver the lookup
+  // computes (lookup_faces' rules: covered, facing the light, inside the projector) and the
+  // bilinear footprint it reads (bilinear_taps: the same clamped texels).
+  template <class Fn>
+  void footprints(size_t b, size_t e, const Fn& fn) const {
+    auto visit = [&](int f, vec2 st) {
+      const LightFace& lf = layout.faces[size_t(f)];
+      fn(f, bilinear_taps(st, lf.width, lf.height));
+    };
+    size_t i = b;
+    if (receivers8)
+      for (; i + 8 <= e; i += 8) {
+        Receivers8 r;
+        receivers8(consts, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], r);
+        for (int k = 0; k < 8; ++k)
+          if (r.active[k]) visit(r.face[k], vec2(r.sx[k], r.sy[k]));
+      }
+    const vec3 L = scene.light.position;
+    for (; i < e; ++i) {
+      if (!g.covered[i] || !faces_light(g, i, L)) continue;
+      vec2 slide_st;
+      if (layout.kind == FaceLayoutKind::Projector &&
+          !projector_slide_coords(frame, L, g.position[i], slide_st))
+        continue;
+      const Receiver r =
+          make_receiver(layout, scene.light, p, reach, inv_far, g.position[i], g.geo_normal[i]);
+      visit(r.face, r.st);
+    }
+  }
+
+  // Every pixel's own footprint marked, skipping a pixel whose tiles are its predecessor's.
+  void mark_each(size_t b, size_t e) const {
+    int last[5] = {-1, 0, 0, 0, 0};
+    footprints(b, e, [&](int f, const Bilinear& t) {
+      const int cur[5] = {f, t.x0 / kTexelTile, t.x1 / kTexelTile, t.y0 / kTexelTile,
+                          t.y1 / kTexelTile};
+      if (std::equal(cur, cur + 5, last)) return;
+      std::copy(cur, cur + 5, last);
+      mark_tiles(tiles, f, cur[1], cur[2], cur[3], cur[4]);
+    });
+  }
+};
+
+// How a box's corners lie against a face's plane through the light.
+enum class Side { Front, Behind, Across };
+
+// Face f's texels read by lookups at points of the box [lo, hi] (metres) whose texel
+// coordinates lie in [s_min, s_max] × [t_min, t_max], into `rect` when every corner is in front
+// of the face (Front): the face's gnomonic image of the box is then the convex hull of the
+// corners' images, so each point's texel coordinates lie within the corners' bounds, up to the
+// per-pixel path's float rounding (~1e-3 texel at 1024 texels), which one texel of margin on
+// each side covers. `rect` stays empty for Behind (no point of the box projects onto the face)
+// and Across.
+Side hull_rect(const FaceLayout& layout, const vec3& light, int f, const glm::dvec3& lo,
+               const glm::dvec3& hi, double s_min, double s_max, double t_min, double t_max,
+               TexelRect& rect) {
+  const LightFace& lf = layout.faces[size_t(f)];
+  const glm::dvec3 L(light), fwd(lf.forward), right(lf.right), up(lf.up);
+  const double su = double(lf.width) / (double(lf.right_edge) - double(lf.left));
+  const double sv = double(lf.height) / (double(lf.top) - double(lf.bottom));
+  double s_lo = std::numeric_limits<double>::infinity(), s_hi = -s_lo, t_lo = s_lo, t_hi = -s_lo;
+  int front = 0, behind = 0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 d =
+        glm::dvec3((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z) - L;
+    const double z = glm::dot(d, fwd);
+    if (z <= 0.0) ++behind;
+    if (!(z > 1e-9 * (std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z)))) continue;
+    ++front;
+    const double inv_z = 1.0 / z;
+    const double s = (glm::dot(d, right) * inv_z - double(lf.left)) * su;
+    const double t = (double(lf.top) - glm::dot(d, up) * inv_z) * sv;
+    s_lo = std::min(s_lo, s);
+    s_hi = std::max(s_hi, s);
+    t_lo = std::min(t_lo, t);
+    t_hi = std::max(t_hi, t);
+  }
+  if (behind == 8) return Side::Behind;
+  if (front < 8 ||
+      !(std::isfinite(s_lo) && std::isfinite(s_hi) && std::isfinite(t_lo) && std::isfinite(t_hi)))
+    return Side::Across;
+  s_lo = std::max(s_lo, s_min);
+  s_hi = std::min(s_hi, s_max);
+  t_lo = std::max(t_lo, t_min);
+  t_hi = std::min(t_hi, t_max);
+  // bilinear_taps reads floor(st − ½) and the next texel; one texel more each side for rounding.
+  auto texel = [](double c, int n) {
+    return int(std::clamp(std::floor(c - 0.5), -1.0, double(n)));
+  };
+  const int x0 = std::max(0, texel(s_lo, lf.width) - 1);
+  const int x1 = std::min(lf.width - 1, texel(s_hi, lf.width) + 2);
+  const int y0 = std::max(0, texel(t_lo, lf.height) - 1);
+  const int y1 = std::min(lf.height - 1, texel(t_hi, lf.height) + 2);
+  if (s_lo <= s_hi && t_lo <= t_hi && x0 <= x1 && y0 <= y1) rect = {x0, x1, y0, y1};
+  return Side::Front;
+}
+
+// A block whose bounds' image covers more texels than this is looked at pixel by pixel: such a
+// box holds a depth discontinuity (a near and a far surface), whose pixels' footprints cover a
+// small part of the hull between them. Measured on the default scene at res 1024 (cube):
+// without the limit the hulls cover 52 % of the rendered texels' tiles against 39 % for the
+// pixels' own footprints; see README "The light-map pipeline".
+constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
+
+// The texels of every pixel of a block, per face, through its bounds grown by `reach` metres (the
+// normal offset); false when the block must be decided pixel by pixel. A box in one face's cone
+// (box_single_face; the projector's single face) is that face's hull. A box across face
+// boundaries is, on each face in front of all its corners, the hull clipped to the texels the
+// face owns (its image without the guard band: a receiver's coordinates lie there, and the
+// margin covers their rounding); it needs the pixels when some face has corners on both sides
+// of its plane (the box passes beside the light), on the dual-paraboloid layout, and when the
+// hulls cover more than kMaxHullTexels.
+bool box_rects(const FaceLayout& layout, const vec3& light, const BlockBounds& box, float reach,
+               TexelRect* rects) {
+  if (layout.kind == FaceLayoutKind::DualParaboloid) return false;
+  const glm::dvec3 lo = glm::dvec3(box.lo) - double(reach), hi = glm::dvec3(box.hi) + double(reach);
+  const double inf = std::numeric_limits<double>::infinity();
+  const int single = layout.kind == FaceLayoutKind::Projector
+                         ? 0
+                         : box_single_face(layout, light, box.lo, box.hi, reach, 1);
+  if (single >= 0)
+    return hull_rect(layout, light, single, lo, hi, -inf, inf, -inf, inf, rects[single]) ==
+               Side::Front &&
+           rects[single].area() <= kMaxHullTexels;
+  const double g = double(layout.guard);
+  uint64_t area = 0;
+  for (size_t f = 0; f < layout.faces.size(); ++f) {
+    const LightFace& lf = layout.faces[f];
+    if (hull_rect(layout, light, int(f), lo, hi, g, double(lf.width) - g, g, double(lf.height) - g,
+                  rects[f]) == Side::Across)
+      return false;
+    area += rects[f].area();
+  }
+  return area <= kMaxHullTexels;
+}
+
+}  // namespace
+
+std::vector<FaceTiles> texel_tiles_needed_by_pixels(const Scene& scene, const GBuffer& g,
+                                                    const FaceLayout& layout, const MapParams& p,
+                                                    const std::vector<bool>& faces) {
+  std::vector<FaceTiles> tiles = empty_tiles(layout, faces);
+  if (layout.kind == FaceLayoutKind::DualParaboloid) return tiles;
+  const PixelMarker marker(scene, g, layout, p, tiles);
+  parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) { marker.mark_each(b, e); });
+  return tiles;
+}
+
+std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
+                                          const FaceLayout& layout, const MapParams& p,
+                                          const std::vector<bool>& faces) {
+  // The paraboloid faces get every tile: nothing to find.
+  if (layout.kind == FaceLayoutKind::DualParaboloid) return empty_tiles(layout, faces);
+  if (!g.has_block_bounds()) return texel_tiles_needed_by_pixels(scene, g, layout, p, faces);
+  SL_CHECK(layout.faces.size() <= size_t(kMaxFaces));
+  std::vector<FaceTiles> tiles = empty_tiles(layout, faces);
+  const PixelMarker marker(scene, g, layout, p, tiles);
+  const vec3 light = scene.light.position;
+  const float plane_texel = face_texel_plane_size(layout.faces[0]);
+  const int bx = g.blocks_x(), by = g.blocks_y(), B = kGBufferBlock;
+  parallel_for_chunks(size_t(by), 1, [&](size_t r0, size_t r1) {
+    for (size_t r = r0; r < r1; ++r)
+      for (int b = 0; b < bx; ++b) {
+        const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
+        if (box.empty()) continue;
+        // The normal offset's reach, as faces_needed bounds it (normal × plane texel × the
+        // farthest distance, 1 % more for rounding).
+        float reach = 0.0f;
+        if (p.normal > 0.0f) {
+          const vec3 far_corner = glm::max(glm::abs(box.lo - light), glm::abs(box.hi - light));
+          reach = 1.01f * p.normal * plane_texel * glm::length(far_corner);
+        }
+        TexelRect rects[kMaxFaces];
+        if (box_rects(layout, light, box, reach, rects)) {
+          for (size_t f = 0; f < layout.faces.size(); ++f)
+            if (!rects[f].empty())
+              mark_texels(tiles, int(f), rects[f].x0, rects[f].x1, rects[f].y0, rects[f].y1);
+          continue;
+        }
+        const int x0 = b * B, x1 = std::min(g.width, x0 + B);
+        const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
+        for (int y = y0; y < y1; ++y) {
+          const size_t i = size_t(y) * size_t(g.width);
+          marker.mark_each(i + size_t(x0), i + size_t(x1));
+        }
+      }
+  });
+  return tiles;
+}
+
+}  // namespace shadowlab
