@@ -40,13 +40,29 @@ float row_min_scalar(const float* row, int x0, int x1) {
   return m;
 }
 
-__attribute__((target("avx2"))) float row_min_avx2(const float* row, int x0, int x1) {
+// radial_row and row_min_scalar in one AVX2 loop: radial_row's operations in its order per lane
+// (u = u0 + (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its
+// bits, and the minimum of the results, while they are in registers.
+__attribute__((target("avx2"))) float radial_row_min_avx2(float* row, int x0, int x1, float u0,
+                                                          float du, float v, float inv_far) {
   // _mm256_min_ps(a, b) is a < b ? a : b per lane: with the new values as a, a NaN keeps b.
   __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256 lane = _mm256_setr_ps(0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f);
+  const __m256 vv = _mm256_mul_ps(_mm256_set1_ps(v), _mm256_set1_ps(v));
   int x = x0;
-  for (; x + 8 <= x1; x += 8) m = _mm256_min_ps(_mm256_loadu_ps(row + x), m);
+  for (; x + 8 <= x1; x += 8) {
+    // float(x + l) + 0.5 is exact (x < 2^23), as float(x) + 0.5 per texel in radial_row.
+    const __m256 xs = _mm256_add_ps(_mm256_set1_ps(float(x)), lane);
+    const __m256 u = _mm256_add_ps(_mm256_set1_ps(u0), _mm256_mul_ps(xs, _mm256_set1_ps(du)));
+    const __m256 r2 = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(u, u)), vv);
+    const __m256 d = _mm256_div_ps(_mm256_mul_ps(_mm256_sqrt_ps(r2), _mm256_set1_ps(inv_far)),
+                                   _mm256_loadu_ps(row + x));
+    _mm256_storeu_ps(row + x, d);
+    m = _mm256_min_ps(d, m);
+  }
   alignas(32) float lanes[8];
   _mm256_store_ps(lanes, m);
+  radial_row(row, x, x1, u0, du, v, inv_far);
   float r = row_min_scalar(row, x, x1);
   for (const float l : lanes) r = l < r ? l : r;
   return r;
@@ -76,7 +92,7 @@ struct FaceRadialShader {
   float inv_far;
   float* out;  // the target's own 1/w storage: each texel is read, then overwritten
   std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits)
-  bool avx2;                        // row_min_avx2 (else row_min_scalar: the same value)
+  bool avx2;  // radial_row_min_avx2 (else radial_row + row_min_scalar: the same bits)
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
@@ -85,14 +101,20 @@ struct FaceRadialShader {
     float m = std::numeric_limits<float>::infinity();
     for (int y = y0; y < y1; ++y) {
       float* const row = out + size_t(y) * size_t(depth.width);
+      // With the conversion: the stored distances' minimum (ESM's shift).
+      float rm;
       if (face->paraboloid) {
         paraboloid_row(row, x0, x1, inv_far);
+        rm = row_min_scalar(row, x0, x1);
       } else {
         const float v = face->top - (float(y) + 0.5f) * dv;
-        radial_row(row, x0, x1, face->left, du, v, inv_far);
+        if (avx2) {
+          rm = radial_row_min_avx2(row, x0, x1, face->left, du, v, inv_far);
+        } else {
+          radial_row(row, x0, x1, face->left, du, v, inv_far);
+          rm = row_min_scalar(row, x0, x1);
+        }
       }
-      // While the tile's rows are in cache: the stored distances' minimum (ESM's shift).
-      const float rm = avx2 ? row_min_avx2(row, x0, x1) : row_min_scalar(row, x0, x1);
       m = rm < m ? rm : m;
     }
     atomic_min_float(*min_bits, m);
