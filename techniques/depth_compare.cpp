@@ -209,6 +209,6 @@ uint64_t stored_planes(const MapParams&) { return 0; }
 const MapFilterOps kDepthCompare = {
     "sm", "shadow map, depth compare with PCF", MapFilter::Depth,
     sm_filter::parse_keys, sm_filter::keys_text, sm_filter::filter, sm_filter::lookup,
-    sm_filter::taps_per_lookup, sm_filter::tap_bytes, sm_filter::stored_planes, nullptr};
+    sm_filter::taps_per_lookup, sm_filter::tap_bytes, sm_filter::stored_planes, nullptr, false};
 
 }  // namespace shadowlab

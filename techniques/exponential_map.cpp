@@ -175,6 +175,6 @@ const MapFilterOps kExponentialMap = {
     "esm", "exponential shadow map", MapFilter::Exponential,
     esm_filter::parse_keys, esm_filter::keys_text, esm_filter::filter, esm_filter::lookup,
     esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes,
-    esm_filter::by_tiles};
+    esm_filter::by_tiles, true};
 
 }  // namespace shadowlab

@@ -213,6 +213,6 @@ const MapFilterOps kExponentialVarianceMap = {
     "evsm", "exponential variance shadow map", MapFilter::ExponentialVariance,
     evsm_filter::parse_keys, evsm_filter::keys_text, evsm_filter::filter, evsm_filter::lookup,
     evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes,
-    evsm_filter::by_tiles};
+    evsm_filter::by_tiles, false};
 
 }  // namespace shadowlab

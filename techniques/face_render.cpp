@@ -91,13 +91,23 @@ struct FaceRadialShader {
   const LightFace* face;
   float inv_far;
   float* out;  // the target's own 1/w storage: each texel is read, then overwritten
-  std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits)
+  std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits), or null
   bool avx2;  // radial_row_min_avx2 (else radial_row + row_min_scalar: the same bits)
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
     const float du = (face->right_edge - face->left) / float(face->width);
     const float dv = (face->top - face->bottom) / float(face->height);
+    if (!min_bits) {
+      for (int y = y0; y < y1; ++y) {
+        float* const row = out + size_t(y) * size_t(depth.width);
+        if (face->paraboloid)
+          paraboloid_row(row, x0, x1, inv_far);
+        else
+          radial_row(row, x0, x1, face->left, du, face->top - (float(y) + 0.5f) * dv, inv_far);
+      }
+      return;
+    }
     float m = std::numeric_limits<float>::infinity();
     for (int y = y0; y < y1; ++y) {
       float* const row = out + size_t(y) * size_t(depth.width);
@@ -148,7 +158,7 @@ ParaboloidProjection face_paraboloid(const LightFace& f, const PointLight& light
 
 void render_face_distances(const Scene& scene, const FaceLayout& layout,
                            const std::vector<bool>& needed, FaceDistances& out, CullMode cull,
-                           int tess) {
+                           int tess, bool min_distance) {
   const size_t n = layout.faces.size();
   out.distance.resize(n);
   out.rendered.assign(n, false);
@@ -183,7 +193,8 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
     DepthTarget target;
     target.inv_w.swap(out.distance[i]);
     target.resize(face.width, face.height);
-    FaceRadialShader shader{&face, 1.0f / scene.light.far, target.inv_w.data(), &min_bits[i],
+    FaceRadialShader shader{&face, 1.0f / scene.light.far, target.inv_w.data(),
+                            min_distance ? &min_bits[i] : nullptr,
                             use_avx2_paths()};
     if (face.paraboloid) {
       const ParaboloidProjection pp = face_paraboloid(face, scene.light);
@@ -222,10 +233,13 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
   else
     for (size_t i = 0; i < n; ++i) render_face(i);
   out.triangles_submitted = out.triangles_culled = out.triangles_binned = out.texels_rendered = 0;
-  out.min_distance.assign(n, std::numeric_limits<float>::infinity());
+  if (min_distance)
+    out.min_distance.assign(n, std::numeric_limits<float>::infinity());
+  else
+    out.min_distance.clear();
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
-    out.min_distance[i] = std::bit_cast<float>(min_bits[i].load());
+    if (min_distance) out.min_distance[i] = std::bit_cast<float>(min_bits[i].load());
     out.rendered[i] = true;
     out.triangles_submitted += stats[i].triangles_in;
     out.triangles_culled += stats[i].culled_frustum;

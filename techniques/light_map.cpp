@@ -28,12 +28,14 @@ FaceLayout map_layout(const MapParams& p, const Scene& scene) {
 
 void render_light_map(const Scene& scene, const MapParams& p, const std::vector<bool>& needed,
                       LightMap& map) {
-  render_face_distances(scene, map.layout, needed, map.dist, CullMode::None, p.tess);
+  render_face_distances(scene, map.layout, needed, map.dist, CullMode::None, p.tess,
+                        map_filter_ops(p.filter).wants_min_distance);
   if (p.depth == DepthFormat::F32) return;
   for (size_t f = 0; f < map.dist.distance.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
     std::vector<float>& d = map.dist.distance[f];
     quantize_depths(d.data(), d.size(), p.depth);
+    if (map.dist.min_distance.empty()) continue;
     // The stored values' minimum again (the render's was of the unquantized distances).
     float m = std::numeric_limits<float>::infinity();
     for (const float v : d) m = v < m ? v : m;

@@ -41,6 +41,8 @@ struct MapFilterOps {
   // lookup (map.tiles, techniques/texel_tiles.h) under these params; nullptr: never (no filter,
   // or one that reads the whole face).
   bool (*by_tiles)(const MapParams& p);
+  // True when the filter reads FaceDistances::min_distance, which the render then finds.
+  bool wants_min_distance;
 };
 
 extern const MapFilterOps kDepthCompare;     // sm:  depth compare with PCF

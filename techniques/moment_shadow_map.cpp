@@ -201,6 +201,6 @@ const MapFilterOps kMomentShadowMap = {
     "msm", "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
     msm_filter::parse_keys, msm_filter::keys_text, msm_filter::filter, msm_filter::lookup,
     msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes,
-    msm_filter::by_tiles};
+    msm_filter::by_tiles, false};
 
 }  // namespace shadowlab

@@ -376,6 +376,6 @@ uint64_t stored_planes(const MapParams&) { return 0; }
 const MapFilterOps kPcss = {
     "pcss", "percentage-closer soft shadows (blocker search + Poisson PCF)", MapFilter::Pcss,
     pcss_filter::parse_keys, pcss_filter::keys_text, pcss_filter::filter, pcss_filter::lookup,
-    pcss_filter::taps_per_lookup, pcss_filter::tap_bytes, pcss_filter::stored_planes, nullptr};
+    pcss_filter::taps_per_lookup, pcss_filter::tap_bytes, pcss_filter::stored_planes, nullptr, false};
 
 }  // namespace shadowlab

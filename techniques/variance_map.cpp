@@ -237,6 +237,6 @@ const MapFilterOps kVarianceMap = {
     "vsm", "variance shadow map", MapFilter::Variance,
     vsm_filter::parse_keys, vsm_filter::keys_text, vsm_filter::filter, vsm_filter::lookup,
     vsm_filter::taps_per_lookup, vsm_filter::tap_bytes, vsm_filter::stored_planes,
-    vsm_filter::by_tiles};
+    vsm_filter::by_tiles, false};
 
 }  // namespace shadowlab
