@@ -68,6 +68,24 @@ __attribute__((target("avx2"))) float radial_row_min_avx2(float* row, int x0, in
   return r;
 }
 
+// paraboloid_row and row_min_scalar in one AVX2 loop (inv_far / row[x] per lane: its bits).
+__attribute__((target("avx2"))) float paraboloid_row_min_avx2(float* row, int x0, int x1,
+                                                              float inv_far) {
+  __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  int x = x0;
+  for (; x + 8 <= x1; x += 8) {
+    const __m256 d = _mm256_div_ps(_mm256_set1_ps(inv_far), _mm256_loadu_ps(row + x));
+    _mm256_storeu_ps(row + x, d);
+    m = _mm256_min_ps(d, m);
+  }
+  alignas(32) float lanes[8];
+  _mm256_store_ps(lanes, m);
+  for (int i = x; i < x1; ++i) row[i] = inv_far / row[i];
+  float r = row_min_scalar(row, x, x1);
+  for (const float l : lanes) r = l < r ? l : r;
+  return r;
+}
+
 // Lowers *bits (a non-negative float's bits, which order as unsigned integers) to m's.
 void atomic_min_float(std::atomic<uint32_t>& bits, float m) {
   const uint32_t mb = std::bit_cast<uint32_t>(m);
@@ -114,8 +132,12 @@ struct FaceRadialShader {
       // With the conversion: the stored distances' minimum (ESM's shift).
       float rm;
       if (face->paraboloid) {
-        paraboloid_row(row, x0, x1, inv_far);
-        rm = row_min_scalar(row, x0, x1);
+        if (avx2) {
+          rm = paraboloid_row_min_avx2(row, x0, x1, inv_far);
+        } else {
+          paraboloid_row(row, x0, x1, inv_far);
+          rm = row_min_scalar(row, x0, x1);
+        }
       } else {
         const float v = face->top - (float(y) + 0.5f) * dv;
         if (avx2) {

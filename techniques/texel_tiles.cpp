@@ -45,18 +45,22 @@ uint64_t tile_texels(const FaceTiles* tiles, int w, int h) {
 
 namespace {
 
-// Tiles for every face of the layout: needed faces' all unmarked (or, on the dual-paraboloid
-// layout, every tile), the others unmarked.
-std::vector<FaceTiles> empty_tiles(const FaceLayout& layout, const std::vector<bool>& faces) {
+// Tiles for every face of the layout, all unmarked.
+std::vector<FaceTiles> empty_tiles(const FaceLayout& layout) {
   std::vector<FaceTiles> out(layout.faces.size());
   for (size_t f = 0; f < out.size(); ++f) {
     const LightFace& lf = layout.faces[f];
     out[f].tiles_x = (lf.width + kTexelTile - 1) / kTexelTile;
     out[f].tiles_y = (lf.height + kTexelTile - 1) / kTexelTile;
-    if (!(lf.paraboloid && faces[f]))
-      out[f].need.assign(size_t(out[f].tiles_x) * size_t(out[f].tiles_y), 0);
+    out[f].need.assign(size_t(out[f].tiles_x) * size_t(out[f].tiles_y), 0);
   }
   return out;
+}
+
+// Faces not in `faces` get no tiles (a block's hull may reach a face no pixel looks up).
+void drop_unneeded(std::vector<FaceTiles>& tiles, const std::vector<bool>& faces) {
+  for (size_t f = 0; f < tiles.size(); ++f)
+    if (f >= faces.size() || !faces[f]) std::fill(tiles[f].need.begin(), tiles[f].need.end(), 0);
 }
 
 // Marks texels [x0, x1] × [y0, y1] (inclusive, inside the face) of face f. Threads mark the same
@@ -217,8 +221,46 @@ Side hull_rect(const FaceLayout& layout, const vec3& light, int f, const glm::dv
 // pixels' own footprints; see README "The light-map pipeline".
 constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
 
+// Texel bounds of a paraboloid face's lookups at the points of a sphere of directions' cap, into
+// `rect` (clipped to the texels the face owns); false when the cap holds the face's projection
+// pole (its image is unbounded). The face's map is the stereographic projection from the pole
+// −forward, (u, v) = (d̂·right, d̂·up)/(1 + d̂·forward), which maps circles on the sphere to
+// circles: the cap of directions within α of ĉ (polar angle θ from forward) becomes the disk
+// whose diameter joins the images of the cap's two points in ĉ's meridian, at signed radii
+// tan((θ ∓ α)/2) along ĉ's azimuth. A cap wholly past the equator (θ − α > 90°) holds no point
+// the face owns: rect stays empty.
+bool paraboloid_cap_rect(const FaceLayout& layout, int f, const glm::dvec3& c, double alpha,
+                         TexelRect& rect) {
+  const LightFace& lf = layout.faces[size_t(f)];
+  const double cz = std::clamp(glm::dot(c, glm::dvec3(lf.forward)), -1.0, 1.0);
+  const double cx = glm::dot(c, glm::dvec3(lf.right)), cy = glm::dot(c, glm::dvec3(lf.up));
+  const double pi = 3.14159265358979323846;
+  const double theta = std::acos(cz);
+  if (theta - alpha > 0.5 * pi) return true;
+  if (theta + alpha >= 0.999 * pi) return false;
+  const double r1 = std::tan(0.5 * (theta - alpha)), r2 = std::tan(0.5 * (theta + alpha));
+  const double len = std::sqrt(cx * cx + cy * cy);
+  const double ax = len > 0.0 ? cx / len : 1.0, ay = len > 0.0 ? cy / len : 0.0;
+  const double mid = 0.5 * (r1 + r2), radius = 0.5 * (r2 - r1);
+  const double su = double(lf.width) / (double(lf.right_edge) - double(lf.left));
+  const double sv = double(lf.height) / (double(lf.top) - double(lf.bottom));
+  const double g = double(layout.guard);
+  const double s_lo = std::max(g, (mid * ax - radius - double(lf.left)) * su);
+  const double s_hi = std::min(double(lf.width) - g, (mid * ax + radius - double(lf.left)) * su);
+  const double t_lo = std::max(g, (double(lf.top) - (mid * ay + radius)) * sv);
+  const double t_hi = std::min(double(lf.height) - g, (double(lf.top) - (mid * ay - radius)) * sv);
+  if (!(s_lo <= s_hi && t_lo <= t_hi)) return true;
+  // bilinear_taps reads floor(st − ½) and the next texel; one texel more each side for rounding.
+  auto texel = [](double v, int n) { return int(std::clamp(std::floor(v - 0.5), -1.0, double(n))); };
+  rect = {std::max(0, texel(s_lo, lf.width) - 1), std::min(lf.width - 1, texel(s_hi, lf.width) + 2),
+          std::max(0, texel(t_lo, lf.height) - 1), std::min(lf.height - 1, texel(t_hi, lf.height) + 2)};
+  return true;
+}
+
 // The texels of every pixel of a block, per face, through its bounds grown by `reach` metres (the
-// normal offset); false when the block must be decided pixel by pixel. A box in one face's cone
+// normal offset); false when the block must be decided pixel by pixel. The dual-paraboloid
+// layout bounds the box by its circumscribed sphere, whose directions from the light form a cap
+// (paraboloid_cap_rect on each face). A box in one face's cone
 // (box_single_face; the projector's single face) is that face's hull. A box across face
 // boundaries is, on each face in front of all its corners, the hull clipped to the texels the
 // face owns (its image without the guard band: a receiver's coordinates lie there, and the
@@ -227,8 +269,21 @@ constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
 // hulls cover more than kMaxHullTexels.
 bool box_rects(const FaceLayout& layout, const vec3& light, const BlockBounds& box, float reach,
                TexelRect* rects) {
-  if (layout.kind == FaceLayoutKind::DualParaboloid) return false;
   const glm::dvec3 lo = glm::dvec3(box.lo) - double(reach), hi = glm::dvec3(box.hi) + double(reach);
+  if (layout.kind == FaceLayoutKind::DualParaboloid) {
+    const glm::dvec3 centre = 0.5 * (lo + hi) - glm::dvec3(light);
+    const double radius = 0.5 * glm::length(hi - lo), dist = glm::length(centre);
+    // The light inside (or almost at) the sphere: every direction.
+    if (!(dist > 1.001 * radius + 1e-9 * dist) || !std::isfinite(dist)) return false;
+    // 1e-9 rad more for the rounding of asin and of the per-pixel path.
+    const double alpha = std::asin(radius / dist) + 1e-9;
+    uint64_t area = 0;
+    for (size_t f = 0; f < layout.faces.size(); ++f) {
+      if (!paraboloid_cap_rect(layout, int(f), centre / dist, alpha, rects[f])) return false;
+      area += rects[f].area();
+    }
+    return area <= kMaxHullTexels;
+  }
   const double inf = std::numeric_limits<double>::infinity();
   const int single = layout.kind == FaceLayoutKind::Projector
                          ? 0
@@ -254,21 +309,19 @@ bool box_rects(const FaceLayout& layout, const vec3& light, const BlockBounds& b
 std::vector<FaceTiles> texel_tiles_needed_by_pixels(const Scene& scene, const GBuffer& g,
                                                     const FaceLayout& layout, const MapParams& p,
                                                     const std::vector<bool>& faces) {
-  std::vector<FaceTiles> tiles = empty_tiles(layout, faces);
-  if (layout.kind == FaceLayoutKind::DualParaboloid) return tiles;
+  std::vector<FaceTiles> tiles = empty_tiles(layout);
   const PixelMarker marker(scene, g, layout, p, tiles);
   parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) { marker.mark_each(b, e); });
+  drop_unneeded(tiles, faces);
   return tiles;
 }
 
 std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
                                           const FaceLayout& layout, const MapParams& p,
                                           const std::vector<bool>& faces) {
-  // The paraboloid faces get every tile: nothing to find.
-  if (layout.kind == FaceLayoutKind::DualParaboloid) return empty_tiles(layout, faces);
   if (!g.has_block_bounds()) return texel_tiles_needed_by_pixels(scene, g, layout, p, faces);
   SL_CHECK(layout.faces.size() <= size_t(kMaxFaces));
-  std::vector<FaceTiles> tiles = empty_tiles(layout, faces);
+  std::vector<FaceTiles> tiles = empty_tiles(layout);
   const PixelMarker marker(scene, g, layout, p, tiles);
   const vec3 light = scene.light.position;
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
@@ -300,6 +353,7 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
         }
       }
   });
+  drop_unneeded(tiles, faces);
   return tiles;
 }
 

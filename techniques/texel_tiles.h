@@ -46,8 +46,8 @@ uint64_t tile_texels(const FaceTiles* tiles, int w, int h);
 // projector): the perspective image of a box is the convex hull of its corners' images, so the
 // corners' texel coordinates bound every pixel's, and a margin of one texel covers float
 // rounding. The other blocks' pixels are each looked at (their receivers, as the lookup computes
-// them). The dual-paraboloid map's image of a box is not bounded by its corners: its faces get
-// every tile.
+// them). The dual-paraboloid map is not gnomonic: there a block's box is bounded by its
+// circumscribed sphere, whose cap of directions the map takes to a disk (texel_tiles.cpp).
 std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
                                           const FaceLayout& layout, const MapParams& p,
                                           const std::vector<bool>& faces);

@@ -96,7 +96,9 @@ TEST(TexelTiles, BlockTilesHoldEveryPixelsFootprint) {
                {"cesm:res=1024", FaceLayoutKind::Cube, MapFilter::Exponential},
                {"cvsm:res=256,normal=2", FaceLayoutKind::Cube, MapFilter::Variance},
                {"tvsm:res=256", FaceLayoutKind::Tetrahedron, MapFilter::Variance},
-               {"tmsm:res=512,normal=1", FaceLayoutKind::Tetrahedron, MapFilter::Moment}};
+               {"tmsm:res=512,normal=1", FaceLayoutKind::Tetrahedron, MapFilter::Moment},
+               {"dvsm:res=256", FaceLayoutKind::DualParaboloid, MapFilter::Variance},
+               {"desm:res=1024,normal=1", FaceLayoutKind::DualParaboloid, MapFilter::Exponential}};
     }
     for (const Case& c : cases) {
       SCOPED_TRACE(sc.name + " " + c.spec);
@@ -121,15 +123,19 @@ TEST(TexelTiles, BlockTilesHoldEveryPixelsFootprint) {
       ASSERT_GT(brute_n, 0u);
       // Measured over the scenes: cube and projector 1.00–1.25× (+2 tiles), tetrahedral
       // 1.00–1.9× (its wide faces: a block's box spans more texels), the largest ratios where
-      // few tiles are needed (grazing: 17 against 9).
+      // few tiles are needed (grazing: 17 against 9); dual paraboloid 1.07–1.29×, and 2.3–2.5×
+      // on grazing (a box's circumscribed sphere, for a block of the floor seen almost edge-on
+      // from the light, covers far more directions than the box).
       if (c.layout == FaceLayoutKind::Tetrahedron)
         EXPECT_LE(double(block_n), 1.5 * double(brute_n) + 8.0) << block_n << " " << brute_n;
+      else if (c.layout == FaceLayoutKind::DualParaboloid)
+        EXPECT_LE(double(block_n), 2.6 * double(brute_n) + 8.0) << block_n << " " << brute_n;
       else
         EXPECT_LE(double(block_n), 1.2 * double(brute_n) + 4.0) << block_n << " " << brute_n;
       ++checked;
     }
   }
-  EXPECT_GE(checked, 10u);
+  EXPECT_GE(checked, 14u);
 }
 
 // Hand-made blocks whose footprints sit where the block path's margins and cases matter, in a
@@ -194,18 +200,6 @@ TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
       EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
 }
 
-// The dual-paraboloid map's image of a box is not its corners' hull: every tile.
-TEST(TexelTiles, ParaboloidFacesGetEveryTile) {
-  const Scene scene = test::small_scene("default", 160, 120);
-  const GBuffer g = render_gbuffer(scene);
-  const MapParams p =
-      params_of({"dvsm:res=256", FaceLayoutKind::DualParaboloid, MapFilter::Variance});
-  const FaceLayout layout = map_layout(p, scene);
-  const std::vector<FaceTiles> t =
-      texel_tiles_needed(scene, g, layout, p, std::vector<bool>(layout.faces.size(), true));
-  for (const FaceTiles& f : t) EXPECT_TRUE(f.every());
-}
-
 // Spans and counts of a hand-made mask: a 100 × 70 face has 4 × 3 tiles, the last ones partial.
 TEST(TexelTiles, SpansAreTheRunsOfNeededTiles) {
   FaceTiles t;
@@ -248,7 +242,9 @@ TEST(TexelTiles, FilteringOnlyTheTilesKeepsEveryMask) {
       {"cevsm:res=256,moments=4", FaceLayoutKind::Cube, MapFilter::ExponentialVariance},
       {"tevsm:res=256", FaceLayoutKind::Tetrahedron, MapFilter::ExponentialVariance},
       {"cmsm:res=256,quantize16=1", FaceLayoutKind::Cube, MapFilter::Moment},
-      {"tmsm:res=256,blur=1", FaceLayoutKind::Tetrahedron, MapFilter::Moment}};
+      {"tmsm:res=256,blur=1", FaceLayoutKind::Tetrahedron, MapFilter::Moment},
+      {"dvsm:res=256", FaceLayoutKind::DualParaboloid, MapFilter::Variance},
+      {"desm:res=512,blur=5", FaceLayoutKind::DualParaboloid, MapFilter::Exponential}};
   const float nan = std::numeric_limits<float>::quiet_NaN();
   double default_cube_poisoned = 0.0;
   for (const SceneCase& sc : scenes()) {
