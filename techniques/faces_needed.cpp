@@ -106,13 +106,7 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
       for (int b = 0; b < bx && f != all; ++b) {
         const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
         if (box.empty()) continue;
-        // The normal offset moves a lookup point at most normal × plane texel × distance
-        // (techniques/normal_offset.h); 1 % more covers its rounding.
-        float reach = 0.0f;
-        if (p.normal > 0.0f) {
-          const vec3 far_corner = glm::max(glm::abs(box.lo - light), glm::abs(box.hi - light));
-          reach = 1.01f * p.normal * plane_texel * glm::length(far_corner);
-        }
+        const float reach = normal_offset_reach(p, plane_texel, box, light);
         const int face = box_single_face(layout, light, box.lo, box.hi, reach, cross ? p.pcf : 1);
         if (face >= 0 && ((f >> face) & 1u)) continue;
         const int x0 = b * B, x1 = std::min(g.width, x0 + B);

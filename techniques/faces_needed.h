@@ -35,4 +35,14 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
 int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo, const vec3& hi,
                     float reach, int cross_pcf);
 
+// How far (metres) the normal offset may move a lookup point of the block's box: at most
+// normal × plane texel × distance (techniques/normal_offset.h), with 1 % more for its rounding;
+// 0 without normal offset.
+inline float normal_offset_reach(const MapParams& p, float plane_texel, const BlockBounds& box,
+                                 const vec3& light) {
+  if (!(p.normal > 0.0f)) return 0.0f;
+  const vec3 far_corner = glm::max(glm::abs(box.lo - light), glm::abs(box.hi - light));
+  return 1.01f * p.normal * plane_texel * glm::length(far_corner);
+}
+
 }  // namespace shadowlab

@@ -331,13 +331,7 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
       for (int b = 0; b < bx; ++b) {
         const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
         if (box.empty()) continue;
-        // The normal offset's reach, as faces_needed bounds it (normal × plane texel × the
-        // farthest distance, 1 % more for rounding).
-        float reach = 0.0f;
-        if (p.normal > 0.0f) {
-          const vec3 far_corner = glm::max(glm::abs(box.lo - light), glm::abs(box.hi - light));
-          reach = 1.01f * p.normal * plane_texel * glm::length(far_corner);
-        }
+        const float reach = normal_offset_reach(p, plane_texel, box, light);
         TexelRect rects[kMaxFaces];
         if (box_rects(layout, light, box, reach, rects)) {
           for (size_t f = 0; f < layout.faces.size(); ++f)
