@@ -314,6 +314,28 @@ SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* 
   }
 }
 
+// MSM: h_c[x] = Σ_i d^(c+1) over ext[x .. x + K − 1] (ext: the clamped finite row), the powers
+// formed as power_row forms them (d² = d·d, d³ = d²·d, d⁴ = d²·d²) and each sum started from 0
+// and added in i order: hsum_k's sums of power_row's planes, without writing the planes.
+template <int K>
+SL_ROW_CLONES void hsum_powers_k(const float* ext, int w, double* h0, double* h1, double* h2,
+                                 double* h3) {
+  for (int x = 0; x < w; ++x) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    for (int i = 0; i < K; ++i) {
+      const double d = double(ext[x + i]), d2 = d * d;
+      s0 += d;
+      s1 += d2;
+      s2 += d2 * d;
+      s3 += d2 * d2;
+    }
+    h0[x] = s0;
+    h1[x] = s1;
+    h2[x] = s2;
+    h3[x] = s3;
+  }
+}
+
 // ESM: h[x] = Σ_i ext[x + i] (ext: the row's exponentials, extended).
 template <int K>
 SL_ROW_CLONES void hsum_k(const double* ext, int w, double* h) {
@@ -674,8 +696,10 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
         fused_box(
             w, h, k, 4, tiles,
             [&](int y, const SpanCols& s, double* const* dst, double* ext) {
-              make_row(y, s, ext);
-              for (int c = 0; c < 4; ++c) hsum_k<K>(ext + size_t(c) * ew, s.n, dst[c]);
+              float* const ext_f = reinterpret_cast<float*>(ext);
+              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
+              extend_span(ext_f, s, k);
+              hsum_powers_k<K>(ext_f, s.n, dst[0], dst[1], dst[2], dst[3]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
               float* const tmp = reinterpret_cast<float*>(scratch);  // 4·n of its 10·w floats
