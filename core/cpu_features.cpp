@@ -20,4 +20,20 @@ bool use_avx2_paths() {
   return cpu_has_avx2();
 }
 
+bool cpu_has_avx512() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+         __builtin_cpu_supports("avx512dq");
+#else
+  return false;
+#endif
+}
+
+bool use_avx512_paths() {
+  const char* isa = std::getenv("SHADOWLAB_ISA");
+  if (isa && std::strcmp(isa, "avx2") == 0) return false;
+  return use_avx2_paths() && cpu_has_avx512();
+}
+
 }  // namespace shadowlab

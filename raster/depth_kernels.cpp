@@ -88,7 +88,53 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
   }
 }
 
+// The AVX-512 form of the AVX2 kernel: each edge's 8 lanes in one register, the covered lanes
+// and the depth test as mask registers, masked stores where the AVX2 kernel blends. The same
+// integer and IEEE float operations per lane (the plane value, its clamp, the > test), so the
+// same bits (tests/raster/depth_kernels_test.cpp).
+__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_block8_avx512_impl(
+    const DepthBlock8& b, float* z, size_t stride) {
+  __m512i e[3], dy[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = _mm512_add_epi64(_mm512_set1_epi64(b.edge[k]), _mm512_loadu_si512(b.lane_x[k]));
+    dy[k] = _mm512_set1_epi64(b.step_y[k]);
+  }
+  const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(b.ox),
+                                                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  const __m256 zx = _mm256_mul_ps(_mm256_set1_ps(b.z_dx), x);  // z_dx * float(ox + i)
+  const float z0 = b.z0, z_dy = b.z_dy;
+  const __m256 z_lo = _mm256_set1_ps(b.z_lo), z_hi = _mm256_set1_ps(b.z_hi);
+  const __m256i id = _mm256_set1_epi32(int(b.id));
+  uint32_t* const ids = b.ids;
+  const bool inside = b.inside;
+  const int rows = b.rows, oy = b.oy;
+  const __m512i zero = _mm512_setzero_si512();
+  for (int r = 0; r < rows; ++r) {
+    __mmask8 covered = 0xFF;
+    if (!inside) {
+      const __m512i any = _mm512_or_si512(_mm512_or_si512(e[0], e[1]), e[2]);
+      covered = _mm512_cmpge_epi64_mask(any, zero);
+      for (int k = 0; k < 3; ++k) e[k] = _mm512_add_epi64(e[k], dy[k]);
+    }
+    if (covered) {
+      const float zy = z0 + z_dy * float(oy + r);
+      const __m256 iw = _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+      float* row = z + size_t(r) * stride;
+      const __mmask8 nearer = _mm256_mask_cmp_ps_mask(covered, iw, _mm256_loadu_ps(row), _CMP_GT_OQ);
+      _mm256_mask_storeu_ps(row, nearer, iw);
+      if (ids) _mm256_mask_storeu_epi32(ids + size_t(r) * stride, nearer, id);
+    }
+  }
+}
+
 #endif
+
+DepthBlock8Fn depth_block8_avx512() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (cpu_has_avx512()) return depth_block8_avx512_impl;
+#endif
+  return nullptr;
+}
 
 DepthBlock8Fn depth_block8_avx2() {
 #ifdef SHADOWLAB_HAVE_X86
@@ -98,12 +144,15 @@ DepthBlock8Fn depth_block8_avx2() {
 }
 
 DepthBlock8Fn depth_block8_selected() {
+  if (use_avx512_paths())
+    if (const DepthBlock8Fn f = depth_block8_avx512()) return f;
   const DepthBlock8Fn fast = use_avx2_paths() ? depth_block8_avx2() : nullptr;
   return fast ? fast : depth_block8_scalar;
 }
 
 const char* depth_kernel_name() {
-  return depth_block8_selected() == depth_block8_scalar ? "scalar" : "avx2";
+  const DepthBlock8Fn f = depth_block8_selected();
+  return f == depth_block8_scalar ? "scalar" : f == depth_block8_avx2() ? "avx2" : "avx512";
 }
 
 }  // namespace shadowlab

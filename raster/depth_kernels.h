@@ -29,9 +29,12 @@ using DepthBlock8Fn = void (*)(const DepthBlock8& b, float* z, size_t stride);
 void depth_block8_scalar(const DepthBlock8& b, float* z, size_t stride);
 // The AVX2 path, or nullptr when this build or CPU has none.
 DepthBlock8Fn depth_block8_avx2();
+// The AVX-512 path (F, VL, DQ), or nullptr when this build or CPU has none.
+DepthBlock8Fn depth_block8_avx512();
 // The variant in use, chosen once per process.
 DepthBlock8Fn depth_block8_selected();
-// Name of the variant in use: "avx2" or "scalar".
+// Name of the variant in use: "avx512", "avx2" or "scalar" (SHADOWLAB_ISA=avx2 keeps AVX2,
+// SHADOWLAB_SCALAR=1 the scalar oracle).
 const char* depth_kernel_name();
 
 inline void depth_block8(const DepthBlock8& b, float* z, size_t stride) {

@@ -1,4 +1,5 @@
-// The SIMD depth kernel against its scalar oracle: identical bits on random blocks.
+// The SIMD depth kernels (AVX2, AVX-512) against their scalar oracle: identical bits on random
+// blocks.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -9,9 +10,7 @@
 namespace shadowlab {
 namespace {
 
-TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
-  const DepthBlock8Fn fast = depth_block8_avx2();
-  if (!fast) GTEST_SKIP() << "no AVX2 on this CPU: only the scalar path exists";
+void expect_matches_scalar(DepthBlock8Fn fast) {
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<int64_t> edge(-(int64_t(1) << 40), int64_t(1) << 40);
   std::uniform_int_distribution<int64_t> step(-(int64_t(1) << 24), int64_t(1) << 24);
@@ -61,6 +60,18 @@ TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
     ASSERT_EQ(0, std::memcmp(id_fast, id_slow, sizeof id_fast)) << "trial " << trial;
   }
   EXPECT_GT(inside_cases, 100) << "the no-edge branch must be exercised";
+}
+
+TEST(DepthKernels, Avx2MatchesScalarOracleBitForBit) {
+  const DepthBlock8Fn fast = depth_block8_avx2();
+  if (!fast) GTEST_SKIP() << "no AVX2 on this CPU: only the scalar path exists";
+  expect_matches_scalar(fast);
+}
+
+TEST(DepthKernels, Avx512MatchesScalarOracleBitForBit) {
+  const DepthBlock8Fn fast = depth_block8_avx512();
+  if (!fast) GTEST_SKIP() << "no AVX-512 on this CPU";
+  expect_matches_scalar(fast);
 }
 
 }  // namespace
