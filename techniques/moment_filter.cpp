@@ -396,6 +396,14 @@ SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
   for (int x = 0; x < n; ++x) out[x] = finite_dist_bits(row[x]);
 }
 
+// Prefetch hints for the n floats at p, one per 64-byte line.
+inline void prefetch_row(const float* p, int n) {
+  const char* const b = reinterpret_cast<const char*>(p);
+  const char* const e = reinterpret_cast<const char*>(p + n);
+  for (const char* q = b; q < e; q += 64) __builtin_prefetch(q, 0, 3);
+  if (n > 0) __builtin_prefetch(e - 1, 0, 3);
+}
+
 // The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per span of
 // output columns in each band of 32 output rows (kTexelTile: one span over the whole width
 // without `tiles`, else the needed tiles' runs, tile_spans): hrow(y, span, dst, ext) writes input
@@ -404,9 +412,13 @@ SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
 // plane, the k rows' pointers of output row y's vertical window (rows clamped to the image) in
 // top-to-bottom order, and scratch of (planes + 1) × w doubles. Each input row's sums are
 // computed once per band and span (plus k − 1 rows shared with the next band) and stay in cache.
+// `src` (w floats per row, the distances the rows are made from) is prefetched a row ahead over
+// the span's input columns: the render wrote it long before (a face is larger than the caches),
+// and each span row starts a new stream the hardware prefetcher has not seen, so without the
+// hint the row makers wait on memory (a prefetch changes no value).
 template <class HRow, class OutRow>
-void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const HRow& hrow,
-               const OutRow& out_row) {
+void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const float* src,
+               const HRow& hrow, const OutRow& out_row) {
   const int r = k / 2;
   const int bands = (h + kTexelTile - 1) / kTexelTile;
   parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
@@ -432,6 +444,7 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const HR
         for (int y = y0; y < y1; ++y) {
           const int last = std::min(h - 1, y + r);
           for (; next <= last; ++next) {
+            if (next + 1 < h) prefetch_row(src + size_t(next + 1) * size_t(w) + size_t(cols.in0), cols.in_n);
             for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
             hrow(next, cols, dst.data(), ext);
           }
@@ -501,14 +514,14 @@ void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float*
 // With `fixed` and a compiled width, the fixed-width kernels; else the runtime-k loops (their
 // oracle): the same additions in the same order either way.
 template <class MakeRow>
-void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles,
+void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, const float* src,
                        const MakeRow& make_row, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
   if (fixed && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 2, tiles,
+            w, h, k, 2, tiles, src,
             [&](int y, const SpanCols& s, double* const* dst, double* ext) {
               make_row(y, s, ext);
               hsum_k<K>(ext, s.n, dst[0]);
@@ -521,7 +534,7 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles,
       }))
     return;
   fused_box(
-      w, h, k, 2, tiles,
+      w, h, k, 2, tiles, src,
       [&](int y, const SpanCols& s, double* const* dst, double* ext) {
         make_row(y, s, ext);
         hsum_row(ext, s.n, k, dst[0]);
@@ -548,7 +561,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
   if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 2, tiles,
+            w, h, k, 2, tiles, dist,
             [&](int y, const SpanCols& s, double* const* dst, double* ext) {
               float* const ext_f = reinterpret_cast<float*>(ext);
               finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
@@ -566,7 +579,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
                                    size_t(std::clamp(x, 0, w - 1))]));
   };
   box_mean_variance(
-      w, h, k, fixed_kernels, tiles,
+      w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
         if (!slope_term) {
           moment_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead,
@@ -629,7 +642,7 @@ void warped_moments(const float* dist, int w, int h, int k, double c, double sig
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
   box_mean_variance(
-      w, h, k, fixed_kernels, tiles,
+      w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
         warped_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign, ext + s.lead,
                    ext + ew + size_t(s.lead));
@@ -694,7 +707,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
-            w, h, k, 4, tiles,
+            w, h, k, 4, tiles, dist,
             [&](int y, const SpanCols& s, double* const* dst, double* ext) {
               float* const ext_f = reinterpret_cast<float*>(ext);
               finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
@@ -710,7 +723,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
       }))
     return;
   fused_box(
-      w, h, k, 4, tiles,
+      w, h, k, 4, tiles, dist,
       [&](int y, const SpanCols& s, double* const* dst, double* ext) {
         make_row(y, s, ext);
         for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, s.n, k, dst[c]);
@@ -808,7 +821,7 @@ void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernel
   const bool fixed = fixed_kernels && with_fixed_width(k, [&](auto kc) {
     constexpr int K = decltype(kc)::value;
     fused_box(
-        w, h, k, 1, tiles,
+        w, h, k, 1, tiles, dist,
         [&](int y, const SpanCols& s, double* const* dst, double* ext) {
           exp_row(y, s, ext);
           hsum_k<K>(ext, s.n, dst[0]);
@@ -819,7 +832,7 @@ void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernel
   });
   if (fixed) return;
   fused_box(
-      w, h, k, 1, tiles,
+      w, h, k, 1, tiles, dist,
       [&](int y, const SpanCols& s, double* const* dst, double* ext) {
         exp_row(y, s, ext);
         hsum_row(ext, s.n, k, dst[0]);
