@@ -214,12 +214,42 @@ Side hull_rect(const FaceLayout& layout, const vec3& light, int f, const glm::dv
   return Side::Front;
 }
 
+// True when no point of the box [lo, hi] (metres, light at L) lies in face f's cone of
+// directions, clearly (by more than a relative 1e-6 of the box's distance): the box is wholly
+// outside one of the half-spaces a·d >= 0 through the light whose intersection the cone is (cube:
+// forward ± right, forward ± up; tetrahedron: n_f − n_j), whose maximum over the box is
+// a·centre + Σ|a_i|·half_i. Such a face owns none of the block's pixels, whatever its plane does.
+bool box_outside_face(const FaceLayout& layout, int f, const glm::dvec3& lo, const glm::dvec3& hi,
+                      const vec3& light) {
+  const glm::dvec3 centre = 0.5 * (lo + hi) - glm::dvec3(light), half = 0.5 * (hi - lo);
+  const double eps = 1e-6 * (glm::length(centre) + glm::length(half));
+  auto outside = [&](const glm::dvec3& a) {
+    return glm::dot(a, centre) + glm::dot(glm::abs(a), half) < -eps * (std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z));
+  };
+  const LightFace& lf = layout.faces[size_t(f)];
+  const glm::dvec3 fwd(lf.forward), right(lf.right), up(lf.up);
+  switch (layout.kind) {
+    case FaceLayoutKind::Cube:
+      return outside(fwd + right) || outside(fwd - right) || outside(fwd + up) || outside(fwd - up);
+    case FaceLayoutKind::Tetrahedron:
+      for (int j = 0; j < 4; ++j)
+        if (j != f && outside(glm::dvec3(kTetraNormals[f]) - glm::dvec3(kTetraNormals[j])))
+          return true;
+      return false;
+    default: return false;
+  }
+}
+
 // A block whose bounds' image covers more texels than this is looked at pixel by pixel: such a
 // box holds a depth discontinuity (a near and a far surface), whose pixels' footprints cover a
 // small part of the hull between them. Measured on the default scene at res 1024 (cube):
 // without the limit the hulls cover 52 % of the rendered texels' tiles against 39 % for the
 // pixels' own footprints; see README "The light-map pipeline".
 constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
+
+// A group of 2 × 2 blocks is decided by the box around it when its hulls cover at most this
+// many texels (a few tiles' worth); measured on the default scene: see texel_tiles_needed.
+constexpr uint64_t kMaxGroupTexels = 4 * kTexelTile * kTexelTile;
 
 // Texel bounds of a paraboloid face's lookups at the points of a sphere of directions' cap, into
 // `rect` (clipped to the texels the face owns); false when the cap holds the face's projection
@@ -264,9 +294,9 @@ bool paraboloid_cap_rect(const FaceLayout& layout, int f, const glm::dvec3& c, d
 // (box_single_face; the projector's single face) is that face's hull. A box across face
 // boundaries is, on each face in front of all its corners, the hull clipped to the texels the
 // face owns (its image without the guard band: a receiver's coordinates lie there, and the
-// margin covers their rounding); it needs the pixels when some face has corners on both sides
-// of its plane (the box passes beside the light), on the dual-paraboloid layout, and when the
-// hulls cover more than kMaxHullTexels.
+// margin covers their rounding); it needs the pixels when a face whose cone the box may reach
+// (box_outside_face) has corners on both sides of its plane (the box passes beside the light),
+// and when the hulls cover more than kMaxHullTexels.
 bool box_rects(const FaceLayout& layout, const vec3& light, const BlockBounds& box, float reach,
                TexelRect* rects) {
   const glm::dvec3 lo = glm::dvec3(box.lo) - double(reach), hi = glm::dvec3(box.hi) + double(reach);
@@ -297,7 +327,8 @@ bool box_rects(const FaceLayout& layout, const vec3& light, const BlockBounds& b
   for (size_t f = 0; f < layout.faces.size(); ++f) {
     const LightFace& lf = layout.faces[f];
     if (hull_rect(layout, light, int(f), lo, hi, g, double(lf.width) - g, g, double(lf.height) - g,
-                  rects[f]) == Side::Across)
+                  rects[f]) == Side::Across &&
+        !box_outside_face(layout, int(f), lo, hi, light))
       return false;
     area += rects[f].area();
   }
@@ -326,25 +357,55 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
   const vec3 light = scene.light.position;
   const float plane_texel = face_texel_plane_size(layout.faces[0]);
   const int bx = g.blocks_x(), by = g.blocks_y(), B = kGBufferBlock;
-  parallel_for_chunks(size_t(by), 1, [&](size_t r0, size_t r1) {
-    for (size_t r = r0; r < r1; ++r)
-      for (int b = 0; b < bx; ++b) {
-        const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
-        if (box.empty()) continue;
-        const float reach = normal_offset_reach(p, plane_texel, box, light);
+  auto mark = [&](const TexelRect* rects) {
+    for (size_t f = 0; f < layout.faces.size(); ++f)
+      if (!rects[f].empty())
+        mark_texels(tiles, int(f), rects[f].x0, rects[f].x1, rects[f].y0, rects[f].y1);
+  };
+  // One block: its hulls, else its pixels.
+  auto block = [&](size_t r, int b) {
+    const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
+    if (box.empty()) return;
+    TexelRect rects[kMaxFaces];
+    if (box_rects(layout, light, box, normal_offset_reach(p, plane_texel, box, light), rects)) {
+      mark(rects);
+      return;
+    }
+    const int x0 = b * B, x1 = std::min(g.width, x0 + B);
+    const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
+    for (int y = y0; y < y1; ++y) {
+      const size_t i = size_t(y) * size_t(g.width);
+      marker.mark_each(i + size_t(x0), i + size_t(x1));
+    }
+  };
+  // 2 × 2 blocks at a time first: the box around the four is decided once when its hulls are
+  // small (kMaxGroupTexels), which most are on smooth surfaces; they would mark about the same
+  // tiles one by one. Else each block on its own.
+  const int gx = (bx + 1) / 2, gy = (by + 1) / 2;
+  parallel_for_chunks(size_t(gy), 1, [&](size_t q0, size_t q1) {
+    for (size_t q = q0; q < q1; ++q)
+      for (int c = 0; c < gx; ++c) {
+        BlockBounds group;
+        for (size_t r = 2 * q; r < std::min(size_t(by), 2 * q + 2); ++r)
+          for (int b = 2 * c; b < std::min(bx, 2 * c + 2); ++b) {
+            const BlockBounds& box = g.block_bounds[r * size_t(bx) + size_t(b)];
+            if (box.empty()) continue;
+            group.lo = glm::min(group.lo, box.lo);
+            group.hi = glm::max(group.hi, box.hi);
+          }
+        if (group.empty()) continue;
         TexelRect rects[kMaxFaces];
-        if (box_rects(layout, light, box, reach, rects)) {
-          for (size_t f = 0; f < layout.faces.size(); ++f)
-            if (!rects[f].empty())
-              mark_texels(tiles, int(f), rects[f].x0, rects[f].x1, rects[f].y0, rects[f].y1);
-          continue;
+        if (box_rects(layout, light, group, normal_offset_reach(p, plane_texel, group, light),
+                      rects)) {
+          uint64_t area = 0;
+          for (size_t f = 0; f < layout.faces.size(); ++f) area += rects[f].area();
+          if (area <= kMaxGroupTexels) {
+            mark(rects);
+            continue;
+          }
         }
-        const int x0 = b * B, x1 = std::min(g.width, x0 + B);
-        const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
-        for (int y = y0; y < y1; ++y) {
-          const size_t i = size_t(y) * size_t(g.width);
-          marker.mark_each(i + size_t(x0), i + size_t(x1));
-        }
+        for (size_t r = 2 * q; r < std::min(size_t(by), 2 * q + 2); ++r)
+          for (int b = 2 * c; b < std::min(bx, 2 * c + 2); ++b) block(r, b);
       }
   });
   drop_unneeded(tiles, faces);
