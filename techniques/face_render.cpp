@@ -40,32 +40,45 @@ float row_min_scalar(const float* row, int x0, int x1) {
   return m;
 }
 
-// radial_row and row_min_scalar in one AVX2 loop: radial_row's operations in its order per lane
-// (u = u0 + (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its
-// bits, and the minimum of the results, while they are in registers.
-__attribute__((target("avx2"))) float radial_row_min_avx2(float* row, int x0, int x1, float u0,
-                                                          float du, float v, float inv_far) {
+// radial_row over the rows [y0, y1) of a tile (v of row y: top − (y + ½)·dv) and the minimum of
+// the results, in one AVX2 loop: radial_row's operations in its order per lane (u = u0 +
+// (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its bits. One
+// call per tile: per row, the call's own cost was a third of the loop's.
+__attribute__((target("avx2"))) float radial_tile_min_avx2(float* out, size_t stride, int x0,
+                                                           int x1, int y0, int y1, float u0,
+                                                           float du, float top, float dv,
+                                                           float inv_far) {
   // _mm256_min_ps(a, b) is a < b ? a : b per lane: with the new values as a, a NaN keeps b.
   __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  float tail_min = std::numeric_limits<float>::infinity();
   const __m256 lane = _mm256_setr_ps(0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f);
-  const __m256 vv = _mm256_mul_ps(_mm256_set1_ps(v), _mm256_set1_ps(v));
-  int x = x0;
-  for (; x + 8 <= x1; x += 8) {
-    // float(x + l) + 0.5 is exact (x < 2^23), as float(x) + 0.5 per texel in radial_row.
-    const __m256 xs = _mm256_add_ps(_mm256_set1_ps(float(x)), lane);
-    const __m256 u = _mm256_add_ps(_mm256_set1_ps(u0), _mm256_mul_ps(xs, _mm256_set1_ps(du)));
-    const __m256 r2 = _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(u, u)), vv);
-    const __m256 d = _mm256_div_ps(_mm256_mul_ps(_mm256_sqrt_ps(r2), _mm256_set1_ps(inv_far)),
-                                   _mm256_loadu_ps(row + x));
-    _mm256_storeu_ps(row + x, d);
-    m = _mm256_min_ps(d, m);
+  const __m256 one = _mm256_set1_ps(1.0f), vu0 = _mm256_set1_ps(u0), vdu = _mm256_set1_ps(du);
+  const __m256 vfar = _mm256_set1_ps(inv_far);
+  for (int y = y0; y < y1; ++y) {
+    float* const row = out + size_t(y) * stride;
+    const float v = top - (float(y) + 0.5f) * dv;
+    const __m256 vv = _mm256_set1_ps(v * v);
+    int x = x0;
+    for (; x + 8 <= x1; x += 8) {
+      // float(x + l) + 0.5 is exact (x < 2^23), as float(x) + 0.5 per texel in radial_row.
+      const __m256 xs = _mm256_add_ps(_mm256_set1_ps(float(x)), lane);
+      const __m256 u = _mm256_add_ps(vu0, _mm256_mul_ps(xs, vdu));
+      const __m256 r2 = _mm256_add_ps(_mm256_add_ps(one, _mm256_mul_ps(u, u)), vv);
+      const __m256 d =
+          _mm256_div_ps(_mm256_mul_ps(_mm256_sqrt_ps(r2), vfar), _mm256_loadu_ps(row + x));
+      _mm256_storeu_ps(row + x, d);
+      m = _mm256_min_ps(d, m);
+    }
+    for (; x < x1; ++x) {  // radial_row's scalar form
+      const float u = u0 + (float(x) + 0.5f) * du;
+      row[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / row[x];
+      tail_min = row[x] < tail_min ? row[x] : tail_min;
+    }
   }
   alignas(32) float lanes[8];
   _mm256_store_ps(lanes, m);
-  radial_row(row, x, x1, u0, du, v, inv_far);
-  float r = row_min_scalar(row, x, x1);
-  for (const float l : lanes) r = l < r ? l : r;
-  return r;
+  for (const float l : lanes) tail_min = l < tail_min ? l : tail_min;
+  return tail_min;
 }
 
 // paraboloid_row and row_min_scalar in one AVX2 loop (inv_far / row[x] per lane: its bits).
@@ -110,7 +123,7 @@ struct FaceRadialShader {
   float inv_far;
   float* out;  // the target's own 1/w storage: each texel is read, then overwritten
   std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits), or null
-  bool avx2;  // radial_row_min_avx2 (else radial_row + row_min_scalar: the same bits)
+  bool avx2;  // radial_tile_min_avx2 (else radial_row + row_min_scalar: the same bits)
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
@@ -126,28 +139,28 @@ struct FaceRadialShader {
       }
       return;
     }
+    // With the conversion: the stored distances' minimum (ESM's shift).
     float m = std::numeric_limits<float>::infinity();
-    for (int y = y0; y < y1; ++y) {
-      float* const row = out + size_t(y) * size_t(depth.width);
-      // With the conversion: the stored distances' minimum (ESM's shift).
-      float rm;
-      if (face->paraboloid) {
-        if (avx2) {
-          rm = paraboloid_row_min_avx2(row, x0, x1, inv_far);
+    if (avx2 && !face->paraboloid) {
+      m = radial_tile_min_avx2(out, size_t(depth.width), x0, x1, y0, y1, face->left, du,
+                               face->top, dv, inv_far);
+    } else {
+      for (int y = y0; y < y1; ++y) {
+        float* const row = out + size_t(y) * size_t(depth.width);
+        float rm;
+        if (face->paraboloid) {
+          if (avx2) {
+            rm = paraboloid_row_min_avx2(row, x0, x1, inv_far);
+          } else {
+            paraboloid_row(row, x0, x1, inv_far);
+            rm = row_min_scalar(row, x0, x1);
+          }
         } else {
-          paraboloid_row(row, x0, x1, inv_far);
+          radial_row(row, x0, x1, face->left, du, face->top - (float(y) + 0.5f) * dv, inv_far);
           rm = row_min_scalar(row, x0, x1);
         }
-      } else {
-        const float v = face->top - (float(y) + 0.5f) * dv;
-        if (avx2) {
-          rm = radial_row_min_avx2(row, x0, x1, face->left, du, v, inv_far);
-        } else {
-          radial_row(row, x0, x1, face->left, du, v, inv_far);
-          rm = row_min_scalar(row, x0, x1);
-        }
+        m = rm < m ? rm : m;
       }
-      m = rm < m ? rm : m;
     }
     atomic_min_float(*min_bits, m);
   }
