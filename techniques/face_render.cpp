@@ -60,7 +60,8 @@ __attribute__((target("avx2"))) float radial_tile_min_avx2(float* out, size_t st
     const __m256 vv = _mm256_set1_ps(v * v);
     int x = x0;
     for (; x + 8 <= x1; x += 8) {
-      // float(x + l) + 0.5 is exact (x < 2^23), as float(x) + 0.5 per texel in radial_row.
+      // float(x) + (l + 0.5) is exact for x < 2^22 (faces are at most 16384 texels wide), as
+      // float(x) + 0.5 per texel in radial_row.
       const __m256 xs = _mm256_add_ps(_mm256_set1_ps(float(x)), lane);
       const __m256 u = _mm256_add_ps(vu0, _mm256_mul_ps(xs, vdu));
       const __m256 r2 = _mm256_add_ps(_mm256_add_ps(one, _mm256_mul_ps(u, u)), vv);

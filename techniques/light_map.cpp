@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"
 #include "techniques/map_filter.h"
@@ -36,9 +37,17 @@ void render_light_map(const Scene& scene, const MapParams& p, const std::vector<
     std::vector<float>& d = map.dist.distance[f];
     quantize_depths(d.data(), d.size(), p.depth);
     if (map.dist.min_distance.empty()) continue;
-    // The stored values' minimum again (the render's was of the unquantized distances).
+    // The stored values' minimum again (the render's was of the unquantized distances), per
+    // chunk in parallel, then over the chunks in order (min is exact: any order gives it).
+    const size_t grain = 65536, chunks = (d.size() + grain - 1) / grain;
+    std::vector<float> part(chunks, std::numeric_limits<float>::infinity());
+    parallel_for_chunks(d.size(), grain, [&](size_t b, size_t e) {
+      float m = std::numeric_limits<float>::infinity();
+      for (size_t i = b; i < e; ++i) m = d[i] < m ? d[i] : m;
+      part[b / grain] = m;
+    });
     float m = std::numeric_limits<float>::infinity();
-    for (const float v : d) m = v < m ? v : m;
+    for (const float v : part) m = v < m ? v : m;
     map.dist.min_distance[f] = m;
   }
 }

@@ -198,10 +198,13 @@ Side hull_rect(const FaceLayout& layout, const vec3& light, int f, const glm::dv
   if (front < 8 ||
       !(std::isfinite(s_lo) && std::isfinite(s_hi) && std::isfinite(t_lo) && std::isfinite(t_hi)))
     return Side::Across;
-  s_lo = std::max(s_lo, s_min);
-  s_hi = std::min(s_hi, s_max);
-  t_lo = std::max(t_lo, t_min);
-  t_hi = std::min(t_hi, t_max);
+  // The clip keeps one texel beyond the owned region: a receiver exactly on a face boundary may
+  // look either face up (face_of's ties and the float extents of the faces put it within a few
+  // 1e-6 texel of the edge on either side).
+  s_lo = std::max(s_lo, s_min - 1.0);
+  s_hi = std::min(s_hi, s_max + 1.0);
+  t_lo = std::max(t_lo, t_min - 1.0);
+  t_hi = std::min(t_hi, t_max + 1.0);
   // bilinear_taps reads floor(st − ½) and the next texel; one texel more each side for rounding.
   auto texel = [](double c, int n) {
     return int(std::clamp(std::floor(c - 0.5), -1.0, double(n)));
@@ -215,14 +218,19 @@ Side hull_rect(const FaceLayout& layout, const vec3& light, int f, const glm::dv
 }
 
 // True when no point of the box [lo, hi] (metres, light at L) lies in face f's cone of
-// directions, clearly (by more than a relative 1e-6 of the box's distance): the box is wholly
+// directions, clearly (by more than the per-pixel path's rounding): the box is wholly
 // outside one of the half-spaces a·d >= 0 through the light whose intersection the cone is (cube:
 // forward ± right, forward ± up; tetrahedron: n_f − n_j), whose maximum over the box is
 // a·centre + Σ|a_i|·half_i. Such a face owns none of the block's pixels, whatever its plane does.
 bool box_outside_face(const FaceLayout& layout, int f, const glm::dvec3& lo, const glm::dvec3& hi,
                       const vec3& light) {
   const glm::dvec3 centre = 0.5 * (lo + hi) - glm::dvec3(light), half = 0.5 * (hi - lo);
-  const double eps = 1e-6 * (glm::length(centre) + glm::length(half));
+  // The per-pixel path rounds p − L relative to the coordinates' magnitude, not to the distance
+  // from the light: box_single_face's margin, 1e-5 of the largest coordinate.
+  const double eps = 1e-5 * (std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z),
+                                       std::fabs(hi.x), std::fabs(hi.y), std::fabs(hi.z)}) +
+                             std::max({std::fabs(light.x), std::fabs(light.y),
+                                       std::fabs(light.z)}));
   auto outside = [&](const glm::dvec3& a) {
     return glm::dot(a, centre) + glm::dot(glm::abs(a), half) < -eps * (std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z));
   };
@@ -275,10 +283,13 @@ bool paraboloid_cap_rect(const FaceLayout& layout, int f, const glm::dvec3& c, d
   const double su = double(lf.width) / (double(lf.right_edge) - double(lf.left));
   const double sv = double(lf.height) / (double(lf.top) - double(lf.bottom));
   const double g = double(layout.guard);
-  const double s_lo = std::max(g, (mid * ax - radius - double(lf.left)) * su);
-  const double s_hi = std::min(double(lf.width) - g, (mid * ax + radius - double(lf.left)) * su);
-  const double t_lo = std::max(g, (double(lf.top) - (mid * ay + radius)) * sv);
-  const double t_hi = std::min(double(lf.height) - g, (double(lf.top) - (mid * ay - radius)) * sv);
+  // Clipped to the owned disk's square with one texel to spare, as hull_rect does.
+  const double s_lo = std::max(g - 1.0, (mid * ax - radius - double(lf.left)) * su);
+  const double s_hi =
+      std::min(double(lf.width) - g + 1.0, (mid * ax + radius - double(lf.left)) * su);
+  const double t_lo = std::max(g - 1.0, (double(lf.top) - (mid * ay + radius)) * sv);
+  const double t_hi =
+      std::min(double(lf.height) - g + 1.0, (double(lf.top) - (mid * ay - radius)) * sv);
   if (!(s_lo <= s_hi && t_lo <= t_hi)) return true;
   // bilinear_taps reads floor(st − ½) and the next texel; one texel more each side for rounding.
   auto texel = [](double v, int n) { return int(std::clamp(std::floor(v - 0.5), -1.0, double(n))); };

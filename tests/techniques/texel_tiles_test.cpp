@@ -200,6 +200,43 @@ TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
       EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
 }
 
+// A block whose last pixels lie on the plane between two cube faces (x = z, light at the
+// origin): face_of gives those the x face (its ties), so their footprints on the x face sit on
+// that face's edge of owned texels, u = 1; at res 300 the faces' float extents put u = 1 a few 1e-6
+// texel outside the owned range, where a hull clipped to exactly that range is empty. The block
+// path must still mark the tiles the pixels read.
+TEST(TexelTiles, BlocksOnAFaceBoundaryHoldTheirFootprints) {
+  Scene scene;
+  scene.light.position = vec3(0.0f);
+  scene.light.far = 20.0f;
+  const MapParams p = params_of({"cvsm:res=300", FaceLayoutKind::Cube, MapFilter::Variance});
+  const FaceLayout layout = map_layout(p, scene);
+  GBuffer g;
+  g.resize(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const size_t i = size_t(y) * 16 + size_t(x);
+      // On the plane z = 1, x from 0.5 up to exactly 1 in the last column: the box's corner
+      // (1, y, 1) is on the boundary, the rest of the box in z's cone.
+      const float px = x == 15 ? 1.0f : 0.5f + 0.03f * float(x);
+      g.position[i] = vec3(px, 0.3f + 0.01f * float(y), 1.0f);
+      g.geo_normal[i] = glm::normalize(-g.position[i]);
+      g.normal[i] = g.geo_normal[i];
+      g.covered[i] = 1;
+    }
+  compute_block_bounds(g);
+  const std::vector<bool> faces = faces_needed(scene, g, layout, p);
+  const std::vector<FaceTiles> blocks = texel_tiles_needed(scene, g, layout, p, faces);
+  const auto brute = brute_force_tiles(scene, g, layout, p);
+  size_t needed = 0;
+  for (size_t f = 0; f < layout.faces.size(); ++f)
+    for (size_t t = 0; t < brute[f].size(); ++t) {
+      needed += brute[f][t];
+      EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
+    }
+  EXPECT_GT(needed, 0u);
+}
+
 // Spans and counts of a hand-made mask: a 100 × 70 face has 4 × 3 tiles, the last ones partial.
 TEST(TexelTiles, SpansAreTheRunsOfNeededTiles) {
   FaceTiles t;
