@@ -138,6 +138,44 @@ TEST(TexelTiles, BlockTilesHoldEveryPixelsFootprint) {
   EXPECT_GE(checked, 14u);
 }
 
+// A scene with only a light, at the origin, 20 m range (the hand-made GBuffers below).
+Scene origin_light_scene() {
+  Scene scene;
+  scene.light.position = vec3(0.0f);
+  scene.light.far = 20.0f;
+  return scene;
+}
+
+// A w × h GBuffer, every pixel covered at position(x, y), facing the origin light, with its
+// block bounds.
+template <class Position>
+GBuffer hand_gbuffer(int w, int h, const Position& position) {
+  GBuffer g;
+  g.resize(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      g.position[i] = position(x, y);
+      g.geo_normal[i] = glm::normalize(-g.position[i]);
+      g.normal[i] = g.geo_normal[i];
+      g.covered[i] = 1;
+    }
+  compute_block_bounds(g);
+  return g;
+}
+
+// Every tile the brute force needs is among the block path's; returns how many it needs.
+size_t expect_blocks_hold(const std::vector<FaceTiles>& blocks,
+                          const std::vector<std::vector<uint8_t>>& brute) {
+  size_t needed = 0;
+  for (size_t f = 0; f < brute.size(); ++f)
+    for (size_t t = 0; t < brute[f].size(); ++t) {
+      needed += brute[f][t];
+      EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
+    }
+  return needed;
+}
+
 // Hand-made blocks whose footprints sit where the block path's margins and cases matter, in a
 // 48 × 16 GBuffer of three 16 × 16 blocks, light at the origin, cube layout res 64 (faces of
 // 70 × 70 texels with the guard band, 3 × 3 tiles): block 0 on face +X's plane with its pixels'
@@ -147,13 +185,9 @@ TEST(TexelTiles, BlockTilesHoldEveryPixelsFootprint) {
 // block 2 on face −X, half at distance 1 and half at 8 (a depth discontinuity, whose box's hull
 // spans most of that face). Each must hold the brute force's tiles.
 TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
-  Scene scene;
-  scene.light.position = vec3(0.0f);
-  scene.light.far = 20.0f;
+  const Scene scene = origin_light_scene();
   const MapParams p = params_of({"cvsm:res=64", FaceLayoutKind::Cube, MapFilter::Variance});
   const FaceLayout layout = map_layout(p, scene);
-  GBuffer g;
-  g.resize(48, 16);
   // A point through texel coordinates (s, t) of face f at distance `depth` along its axis.
   auto at = [&](int f, float s, float t, float depth) {
     const LightFace& lf = layout.faces[size_t(f)];
@@ -165,27 +199,17 @@ TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
   const int fz = face_of(layout, vec3(0.0f, 0.0f, 1.0f));
   const int fmx = face_of(layout, vec3(-1.0f, 0.0f, 0.0f));
   const float w = float(layout.faces[size_t(fx)].width);
-  for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 48; ++x) {
-      const size_t i = size_t(y) * 48 + size_t(x);
-      vec3 pos;
-      if (x < 16) {
-        pos = at(fx, 20.3f + 0.8f * float(x), 45.3f + 0.4f * float(y), 1.0f);
-      } else if (x < 32) {
-        // Across the fx / fz edge: half the block on each face, near the shared edge.
-        const int lx = x - 16;
-        pos = lx < 8 ? at(fx, w - 6.0f + 0.6f * float(lx), 4.0f + 0.5f * float(y), 1.0f)
-                     : at(fz, 1.0f + 0.6f * float(lx - 8), 4.0f + 0.5f * float(y), 1.0f);
-      } else {
-        const int lx = x - 32;
-        pos = at(fmx, 40.2f + 0.3f * float(lx), 40.2f + 0.3f * float(y), lx < 8 ? 1.0f : 8.0f);
-      }
-      g.position[i] = pos;
-      g.geo_normal[i] = glm::normalize(-pos);
-      g.normal[i] = g.geo_normal[i];
-      g.covered[i] = 1;
+  const GBuffer g = hand_gbuffer(48, 16, [&](int x, int y) {
+    if (x < 16) return at(fx, 20.3f + 0.8f * float(x), 45.3f + 0.4f * float(y), 1.0f);
+    if (x < 32) {
+      // Across the fx / fz edge: half the block on each face, near the shared edge.
+      const int lx = x - 16;
+      return lx < 8 ? at(fx, w - 6.0f + 0.6f * float(lx), 4.0f + 0.5f * float(y), 1.0f)
+                    : at(fz, 1.0f + 0.6f * float(lx - 8), 4.0f + 0.5f * float(y), 1.0f);
     }
-  compute_block_bounds(g);
+    const int lx = x - 32;
+    return at(fmx, 40.2f + 0.3f * float(lx), 40.2f + 0.3f * float(y), lx < 8 ? 1.0f : 8.0f);
+  });
   ASSERT_TRUE(g.has_block_bounds());
   const std::vector<bool> faces = faces_needed(scene, g, layout, p);
   ASSERT_TRUE(faces[size_t(fx)] && faces[size_t(fz)]);
@@ -195,9 +219,7 @@ TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
   // its last pixels' right taps alone.
   ASSERT_EQ(blocks[size_t(fx)].tiles_x, 3);
   ASSERT_EQ(brute[size_t(fx)][4], 1);
-  for (size_t f = 0; f < layout.faces.size(); ++f)
-    for (size_t t = 0; t < brute[f].size(); ++t)
-      EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
+  expect_blocks_hold(blocks, brute);
 }
 
 // A block whose last pixels lie on the plane between two cube faces (x = z, light at the
@@ -206,35 +228,17 @@ TEST(TexelTiles, HandMadeBlocksHoldTheirFootprints) {
 // texel outside the owned range, where a hull clipped to exactly that range is empty. The block
 // path must still mark the tiles the pixels read.
 TEST(TexelTiles, BlocksOnAFaceBoundaryHoldTheirFootprints) {
-  Scene scene;
-  scene.light.position = vec3(0.0f);
-  scene.light.far = 20.0f;
+  const Scene scene = origin_light_scene();
   const MapParams p = params_of({"cvsm:res=300", FaceLayoutKind::Cube, MapFilter::Variance});
   const FaceLayout layout = map_layout(p, scene);
-  GBuffer g;
-  g.resize(16, 16);
-  for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) {
-      const size_t i = size_t(y) * 16 + size_t(x);
-      // On the plane z = 1, x from 0.5 up to exactly 1 in the last column: the box's corner
-      // (1, y, 1) is on the boundary, the rest of the box in z's cone.
-      const float px = x == 15 ? 1.0f : 0.5f + 0.03f * float(x);
-      g.position[i] = vec3(px, 0.3f + 0.01f * float(y), 1.0f);
-      g.geo_normal[i] = glm::normalize(-g.position[i]);
-      g.normal[i] = g.geo_normal[i];
-      g.covered[i] = 1;
-    }
-  compute_block_bounds(g);
+  // On the plane z = 1, x from 0.5 up to exactly 1 in the last column: the box's corner
+  // (1, y, 1) is on the boundary, the rest of the box in z's cone.
+  const GBuffer g = hand_gbuffer(16, 16, [](int x, int y) {
+    return vec3(x == 15 ? 1.0f : 0.5f + 0.03f * float(x), 0.3f + 0.01f * float(y), 1.0f);
+  });
   const std::vector<bool> faces = faces_needed(scene, g, layout, p);
   const std::vector<FaceTiles> blocks = texel_tiles_needed(scene, g, layout, p, faces);
-  const auto brute = brute_force_tiles(scene, g, layout, p);
-  size_t needed = 0;
-  for (size_t f = 0; f < layout.faces.size(); ++f)
-    for (size_t t = 0; t < brute[f].size(); ++t) {
-      needed += brute[f][t];
-      EXPECT_TRUE(!brute[f][t] || blocks[f].need[t]) << "face " << f << " tile " << t;
-    }
-  EXPECT_GT(needed, 0u);
+  EXPECT_GT(expect_blocks_hold(blocks, brute_force_tiles(scene, g, layout, p)), 0u);
 }
 
 // Spans and counts of a hand-made mask: a 100 × 70 face has 4 × 3 tiles, the last ones partial.
