@@ -41,8 +41,6 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-bool by_tiles(const MapParams&) { return true; }
-
 // One occluder term, e^(z − c·t) in float (core/exp_log.h's exp_f, whose steps the AVX2 batch
 // below repeats, so both give the same bits). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
 // keeps four terms finite in float (any such tap already makes the sum >= 1 unless its weight
@@ -175,6 +173,6 @@ const MapFilterOps kExponentialMap = {
     "esm", "exponential shadow map", MapFilter::Exponential,
     esm_filter::parse_keys, esm_filter::keys_text, esm_filter::filter, esm_filter::lookup,
     esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes,
-    esm_filter::by_tiles, true};
+    map_filter_always_by_tiles, true};
 
 }  // namespace shadowlab

@@ -73,8 +73,6 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-bool by_tiles(const MapParams&) { return true; }
-
 struct EvsmConsts {
   double c_pos, c_neg;
   double min_var;  // variance floor of the normalised distance
@@ -213,6 +211,6 @@ const MapFilterOps kExponentialVarianceMap = {
     "evsm", "exponential variance shadow map", MapFilter::ExponentialVariance,
     evsm_filter::parse_keys, evsm_filter::keys_text, evsm_filter::filter, evsm_filter::lookup,
     evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes,
-    evsm_filter::by_tiles, false};
+    map_filter_always_by_tiles, false};
 
 }  // namespace shadowlab

@@ -40,7 +40,7 @@ struct MapFilterOps {
   // True when the filter (stage 5) transforms and blurs only the tiles stage 2 found read by some
   // lookup (map.tiles, techniques/texel_tiles.h) under these params; nullptr: never (no filter,
   // or one that reads the whole face).
-  bool (*by_tiles)(const MapParams& p);
+  bool (*by_tiles)(const MapParams& p);  // map_filter_always_by_tiles for every setting
   // True when the filter reads FaceDistances::min_distance, which the render then finds.
   bool wants_min_distance;
 };
@@ -51,6 +51,9 @@ extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
 extern const MapFilterOps kExponentialVarianceMap;  // evsm: exponential variance shadow map
 extern const MapFilterOps kMomentShadowMap;  // msm: moment shadow map
 extern const MapFilterOps kPcss;             // pcss: percentage-closer soft shadows
+
+// MapFilterOps::by_tiles of a filter that goes by tiles under any params.
+inline bool map_filter_always_by_tiles(const MapParams&) { return true; }
 
 // Every filter, in registry order.
 const std::vector<const MapFilterOps*>& map_filters();

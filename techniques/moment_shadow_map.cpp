@@ -86,8 +86,6 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-bool by_tiles(const MapParams&) { return true; }
-
 struct MsmConsts {
   double alpha;
   bool hausdorff, quantize16;
@@ -201,6 +199,6 @@ const MapFilterOps kMomentShadowMap = {
     "msm", "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
     msm_filter::parse_keys, msm_filter::keys_text, msm_filter::filter, msm_filter::lookup,
     msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes,
-    msm_filter::by_tiles, false};
+    map_filter_always_by_tiles, false};
 
 }  // namespace shadowlab

@@ -80,20 +80,14 @@ void mark_texels(std::vector<FaceTiles>& tiles, int f, int x0, int x1, int y0, i
   mark_tiles(tiles, f, x0 / kTexelTile, x1 / kTexelTile, y0 / kTexelTile, y1 / kTexelTile);
 }
 
-// Inclusive texel bounds of a face's footprints, empty until grown.
+// Inclusive texel bounds on one face; empty unless set.
 struct TexelRect {
-  int x0 = std::numeric_limits<int>::max(), x1 = -1, y0 = std::numeric_limits<int>::max(), y1 = -1;
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;
   bool empty() const { return x1 < x0 || y1 < y0; }
-  void grow(const Bilinear& b) {
-    x0 = std::min(x0, b.x0);
-    x1 = std::max(x1, b.x1);
-    y0 = std::min(y0, b.y0);
-    y1 = std::max(y1, b.y1);
-  }
   uint64_t area() const { return empty() ? 0 : uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1); }
 };
 
-// The faces of a layout have at most 6 faces.
+// A layout has at most 6 faces (the cube's).
 constexpr int kMaxFaces = 6;
 
 struct PixelMarker {
@@ -256,7 +250,8 @@ bool box_outside_face(const FaceLayout& layout, int f, const glm::dvec3& lo, con
 constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
 
 // A group of 2 × 2 blocks is decided by the box around it when its hulls cover at most this
-// many texels (a few tiles' worth); measured on the default scene: see texel_tiles_needed.
+// many texels (a few tiles' worth): on the default scene at res 1024 the tiles then cover
+// 41.6 % of the rendered cube texels against 41.5 % block by block, for 0.32–0.33 against 0.34 ms.
 constexpr uint64_t kMaxGroupTexels = 4 * kTexelTile * kTexelTile;
 
 // Texel bounds of a paraboloid face's lookups at the points of a sphere of directions' cap, into
