@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/cpu_features.h"
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
@@ -168,23 +169,111 @@ SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, 
   }
 }
 
-// ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist (core/exp_log.h:
-// the vectorized loop gives the scalar bits). Two loops: with the float → double conversion in
-// the same loop the compiler kept it scalar.
-SL_ROW_CLONES void esm_exp_row(const float* row, int w, double c, double d_min, double* out) {
+// The exp kernels a filter's rows use, chosen once per filter (core/cpu_features.h; a getenv
+// per row would cost more than some rows): exp_d8 (AVX-512), exp_d4 (AVX2) or the scalar exp_d,
+// which give the same bits (core/exp_log.h). The oracles (fixed_kernels false) take the scalar
+// one, so the tests' comparisons of the two also compare the exp kernels bit for bit.
+enum class ExpPath { scalar, avx2, avx512 };
+
+ExpPath exp_path(bool fast) {
+  if (!fast) return ExpPath::scalar;
+  if (use_avx512_paths()) return ExpPath::avx512;
+  return use_avx2_paths() ? ExpPath::avx2 : ExpPath::scalar;
+}
+
+// ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist. Scalar: two
+// loops (with the float → double conversion in the same loop the compiler kept it scalar).
+SL_ROW_CLONES void esm_exp_row_scalar(const float* row, int w, double c, double d_min,
+                                      double* out) {
   for (int x = 0; x < w; ++x) out[x] = double(finite_dist_bits(row[x]));
   for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
 }
 
 // EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v².
-SL_ROW_CLONES void warped_row(const float* row, int w, double c, double sign, double* m1,
-                              double* m2) {
+SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double sign, double* m1,
+                                     double* m2) {
   for (int x = 0; x < w; ++x) m1[x] = double(finite_dist_bits(row[x]));
   for (int x = 0; x < w; ++x) {
     const double v = sign * exp_d(sign * c * (2.0 * m1[x] - 1.0));
     m1[x] = v;
     m2[x] = v * v;
   }
+}
+
+#if defined(__x86_64__)
+// The same operations, 8 and 4 lanes at a time, the tail by the scalar rows. min(d, 1) is
+// finite_dist (minps returns its second operand unless d < 1, NaN included); the AVX-512
+// conversion is the zero-masked form for GCC 12's sake (core/exp_log.h's exp_d8).
+__attribute__((target("avx512f"))) void esm_exp_row_avx512(const float* row, int w, double c,
+                                                           double d_min, double* out) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m512d vc = _mm512_set1_pd(c), vmin = _mm512_set1_pd(d_min);
+  int x = 0;
+  for (; x + 8 <= w; x += 8) {
+    const __m512d d = _mm512_maskz_cvtps_pd(0xFF, _mm256_min_ps(_mm256_loadu_ps(row + x), one));
+    _mm512_storeu_pd(out + x, exp_d8(_mm512_mul_pd(vc, _mm512_sub_pd(d, vmin))));
+  }
+  esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
+}
+
+__attribute__((target("avx2"))) void esm_exp_row_avx2(const float* row, int w, double c,
+                                                      double d_min, double* out) {
+  const __m128 one = _mm_set1_ps(1.0f);
+  const __m256d vc = _mm256_set1_pd(c), vmin = _mm256_set1_pd(d_min);
+  int x = 0;
+  for (; x + 4 <= w; x += 4) {
+    const __m256d d = _mm256_cvtps_pd(_mm_min_ps(_mm_loadu_ps(row + x), one));
+    _mm256_storeu_pd(out + x, exp_d4(_mm256_mul_pd(vc, _mm256_sub_pd(d, vmin))));
+  }
+  esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
+}
+
+__attribute__((target("avx512f"))) void warped_row_avx512(const float* row, int w, double c,
+                                                          double sign, double* m1, double* m2) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m512d sc = _mm512_set1_pd(sign * c), vs = _mm512_set1_pd(sign);
+  int x = 0;
+  for (; x + 8 <= w; x += 8) {
+    const __m512d d = _mm512_maskz_cvtps_pd(0xFF, _mm256_min_ps(_mm256_loadu_ps(row + x), one));
+    const __m512d t = _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(2.0), d), _mm512_set1_pd(1.0));
+    const __m512d v = _mm512_mul_pd(vs, exp_d8(_mm512_mul_pd(sc, t)));
+    _mm512_storeu_pd(m1 + x, v);
+    _mm512_storeu_pd(m2 + x, _mm512_mul_pd(v, v));
+  }
+  warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
+}
+
+__attribute__((target("avx2"))) void warped_row_avx2(const float* row, int w, double c,
+                                                     double sign, double* m1, double* m2) {
+  const __m128 one = _mm_set1_ps(1.0f);
+  const __m256d sc = _mm256_set1_pd(sign * c), vs = _mm256_set1_pd(sign);
+  int x = 0;
+  for (; x + 4 <= w; x += 4) {
+    const __m256d d = _mm256_cvtps_pd(_mm_min_ps(_mm_loadu_ps(row + x), one));
+    const __m256d t = _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), d), _mm256_set1_pd(1.0));
+    const __m256d v = _mm256_mul_pd(vs, exp_d4(_mm256_mul_pd(sc, t)));
+    _mm256_storeu_pd(m1 + x, v);
+    _mm256_storeu_pd(m2 + x, _mm256_mul_pd(v, v));
+  }
+  warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
+}
+#endif
+
+void esm_exp_row(ExpPath path, const float* row, int w, double c, double d_min, double* out) {
+#if defined(__x86_64__)
+  if (path == ExpPath::avx512) return esm_exp_row_avx512(row, w, c, d_min, out);
+  if (path == ExpPath::avx2) return esm_exp_row_avx2(row, w, c, d_min, out);
+#endif
+  esm_exp_row_scalar(row, w, c, d_min, out);
+}
+
+void warped_row(ExpPath path, const float* row, int w, double c, double sign, double* m1,
+                double* m2) {
+#if defined(__x86_64__)
+  if (path == ExpPath::avx512) return warped_row_avx512(row, w, c, sign, m1, m2);
+  if (path == ExpPath::avx2) return warped_row_avx2(row, w, c, sign, m1, m2);
+#endif
+  warped_row_scalar(row, w, c, sign, m1, m2);
 }
 
 // MSM's power moments of one row: p[0..3][x] = d, d², d³ = d²·d, d⁴ = d²·d² (d = finite_dist),
@@ -645,11 +734,12 @@ namespace {
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
+  const ExpPath path = exp_path(fixed_kernels);
   box_mean_variance(
       w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
-        warped_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign, ext + s.lead,
-                   ext + ew + size_t(s.lead));
+        warped_row(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
+                   ext + s.lead, ext + ew + size_t(s.lead));
         extend_span(ext, s, k);
         extend_span(ext + ew, s, k);
       },
@@ -823,8 +913,10 @@ void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernel
   }
   out.resize(n);
   const double inv = 1.0 / double(k * k);
+  const ExpPath path = exp_path(fixed_kernels);
   auto exp_row = [&](int y, const SpanCols& s, double* ext) {
-    esm_exp_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, d_min, ext + s.lead);
+    esm_exp_row(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, d_min,
+                ext + s.lead);
     extend_span(ext, s, k);
   };
   auto out_at = [&](int y, const SpanCols& s) {

@@ -31,6 +31,9 @@ __attribute__((target_clones("avx2", "default"))) void log_loop(const double* x,
 __attribute__((target("avx2"), noinline)) void exp4_store(const double* x, double* y) {
   _mm256_store_pd(y, exp_d4(_mm256_load_pd(x)));
 }
+__attribute__((target("avx512f"), noinline)) void exp8_store(const double* x, double* y) {
+  _mm512_storeu_pd(y, exp_d8(_mm512_loadu_pd(x)));
+}
 
 // Distance in units of the last place of the exact value (long double).
 double ulps(double got, long double exact) {
@@ -87,6 +90,24 @@ TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
     for (double& v : x) v = i < 4 ? double(i) * 0.25 - 0.5 : u(rng);
     exp4_store(x, y);
     for (int k = 0; k < 4; ++k) {
+      const double one = exp_one(x[k]);
+      ASSERT_EQ(std::memcmp(&y[k], &one, 8), 0) << x[k];
+    }
+  }
+}
+
+// exp_d8 (AVX-512: the table by a two-register permute) likewise, every table index and both
+// signs of the exponent: 2^(j/16) at j = 0..15 are hit by x = (16q + j)·ln2/16.
+TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
+  if (!__builtin_cpu_supports("avx512f")) GTEST_SKIP() << "no AVX-512 on this CPU";
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-700.0, 700.0);
+  for (int i = 0; i < 100000; i += 8) {
+    double x[8], y[8];
+    for (int k = 0; k < 8; ++k)
+      x[k] = i < 512 ? double(i + k - 256) * 0.6931471805599453 / 16.0 : u(rng);
+    exp8_store(x, y);
+    for (int k = 0; k < 8; ++k) {
       const double one = exp_one(x[k]);
       ASSERT_EQ(std::memcmp(&y[k], &one, 8), 0) << x[k];
     }
