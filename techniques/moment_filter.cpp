@@ -169,10 +169,11 @@ SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, 
   }
 }
 
-// The exp kernels a filter's rows use, chosen once per filter (core/cpu_features.h; a getenv
-// per row would cost more than some rows): exp_d8 (AVX-512), exp_d4 (AVX2) or the scalar exp_d,
-// which give the same bits (core/exp_log.h). The oracles (fixed_kernels false) take the scalar
-// one, so the tests' comparisons of the two also compare the exp kernels bit for bit.
+// The exp and log kernels a filter's rows use, chosen once per filter (core/cpu_features.h; a
+// getenv per row would cost more than some rows): exp_d8 and log_d8 (AVX-512), exp_d4 and
+// log_d4 (AVX2) or the scalar exp_d and log_d, which give the same bits (core/exp_log.h). The
+// oracles (fixed_kernels false) take the scalar ones, so the tests' comparisons of the two also
+// compare the kernels bit for bit.
 enum class ExpPath { scalar, avx2, avx512 };
 
 ExpPath exp_path(bool fast) {
@@ -438,8 +439,8 @@ SL_ROW_CLONES void hsum_k(const double* ext, int w, double* h) {
 
 // ESM: the K rows summed, × inv, then c·d_min + ln(·) as float.
 template <int K>
-SL_ROW_CLONES void esm_out_k(const double* const* rows, int w, double inv, double c,
-                             double d_min, float* out) {
+SL_ROW_CLONES void esm_out_k_scalar(const double* const* rows, int w, double inv, double c,
+                                    double d_min, float* out) {
   const double* r[K];
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   for (int x = 0; x < w; ++x) {
@@ -448,6 +449,56 @@ SL_ROW_CLONES void esm_out_k(const double* const* rows, int w, double inv, doubl
     a *= inv;
     out[x] = float(c * d_min + log_d(a));
   }
+}
+
+#if defined(__x86_64__)
+// The same sums and log_d8 / log_d4 (core/exp_log.h), 8 and 4 lanes at a time; the tail by the
+// scalar kernel. The AVX-512 conversion is the zero-masked form (as in esm_exp_row_avx512).
+template <int K>
+__attribute__((target("avx512f"))) void esm_out_k_avx512(const double* const* rows, int w,
+                                                         double inv, double c, double d_min,
+                                                         float* out) {
+  const double* r[K];
+  for (int j = 0; j < K; ++j) r[j] = rows[j];
+  const __m512d vinv = _mm512_set1_pd(inv), cd = _mm512_set1_pd(c * d_min);
+  int x = 0;
+  for (; x + 8 <= w; x += 8) {
+    __m512d a = _mm512_loadu_pd(r[0] + x);
+    for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(r[j] + x));
+    a = _mm512_mul_pd(a, vinv);
+    _mm256_storeu_ps(out + x, _mm512_maskz_cvtpd_ps(0xFF, _mm512_add_pd(cd, log_d8(a))));
+  }
+  for (int j = 0; j < K; ++j) r[j] += x;
+  esm_out_k_scalar<K>(r, w - x, inv, c, d_min, out + x);
+}
+
+template <int K>
+__attribute__((target("avx2"))) void esm_out_k_avx2(const double* const* rows, int w,
+                                                    double inv, double c, double d_min,
+                                                    float* out) {
+  const double* r[K];
+  for (int j = 0; j < K; ++j) r[j] = rows[j];
+  const __m256d vinv = _mm256_set1_pd(inv), cd = _mm256_set1_pd(c * d_min);
+  int x = 0;
+  for (; x + 4 <= w; x += 4) {
+    __m256d a = _mm256_loadu_pd(r[0] + x);
+    for (int j = 1; j < K; ++j) a = _mm256_add_pd(a, _mm256_loadu_pd(r[j] + x));
+    a = _mm256_mul_pd(a, vinv);
+    _mm_storeu_ps(out + x, _mm256_cvtpd_ps(_mm256_add_pd(cd, log_d4(a))));
+  }
+  for (int j = 0; j < K; ++j) r[j] += x;
+  esm_out_k_scalar<K>(r, w - x, inv, c, d_min, out + x);
+}
+#endif
+
+template <int K>
+void esm_out_k(ExpPath path, const double* const* rows, int w, double inv, double c,
+               double d_min, float* out) {
+#if defined(__x86_64__)
+  if (path == ExpPath::avx512) return esm_out_k_avx512<K>(rows, w, inv, c, d_min, out);
+  if (path == ExpPath::avx2) return esm_out_k_avx2<K>(rows, w, inv, c, d_min, out);
+#endif
+  esm_out_k_scalar<K>(rows, w, inv, c, d_min, out);
 }
 
 // MSM: one plane's K rows summed, × inv, as float.
@@ -931,7 +982,7 @@ void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernel
           hsum_k<K>(ext, s.n, dst[0]);
         },
         [&](int y, const SpanCols& s, const double* const* win, double*) {
-          esm_out_k<K>(win, s.n, inv, c, d_min, out_at(y, s));
+          esm_out_k<K>(path, win, s.n, inv, c, d_min, out_at(y, s));
         });
   });
   if (fixed) return;

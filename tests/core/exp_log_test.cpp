@@ -34,6 +34,12 @@ __attribute__((target("avx2"), noinline)) void exp4_store(const double* x, doubl
 __attribute__((target("avx512f"), noinline)) void exp8_store(const double* x, double* y) {
   _mm512_storeu_pd(y, exp_d8(_mm512_loadu_pd(x)));
 }
+__attribute__((target("avx2"), noinline)) void log4_store(const double* x, double* y) {
+  _mm256_storeu_pd(y, log_d4(_mm256_loadu_pd(x)));
+}
+__attribute__((target("avx512f"), noinline)) void log8_store(const double* x, double* y) {
+  _mm512_storeu_pd(y, log_d8(_mm512_loadu_pd(x)));
+}
 
 // Distance in units of the last place of the exact value (long double).
 double ulps(double got, long double exact) {
@@ -50,6 +56,14 @@ TEST(ExpLog, WithinTwoUlpOfLongDouble) {
     worst_exp = std::max(worst_exp, ulps(exp_one(x), std::exp((long double)x)));
     const double y = std::exp(ul(rng));  // log's arguments over [e^-690, e^700]
     worst_log = std::max(worst_log, ulps(log_one(y), std::log((long double)y)));
+  }
+  // Arguments near 1 from both sides (small results: no cancellation allowed) and at the
+  // mantissa steps.
+  for (int i = 1; i < 20000; ++i) {
+    const double y = i % 2 ? 1.0 + 1e-7 * i : 1.0 - 1e-7 * i;
+    worst_log = std::max(worst_log, ulps(log_one(y), std::log((long double)y)));
+    const double z = std::ldexp(1.0 + double(i % 16) / 16.0, i % 40 - 20) * (1.0 + 1e-13 * (i % 7));
+    worst_log = std::max(worst_log, ulps(log_one(z), std::log((long double)z)));
   }
   // Exact points.
   EXPECT_EQ(exp_one(0.0), 1.0);
@@ -110,6 +124,34 @@ TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
     for (int k = 0; k < 8; ++k) {
       const double one = exp_one(x[k]);
       ASSERT_EQ(std::memcmp(&y[k], &one, 8), 0) << x[k];
+    }
+  }
+}
+
+// log_d4 and log_d8 give log_d's bits: every mantissa step (both sides of the fold at 1.5),
+// arguments just below and above 1 and powers of two, and random ones over [e^-690, e^700].
+TEST(ExpLog, IntrinsicLogsGiveTheScalarBits) {
+  const bool avx2 = __builtin_cpu_supports("avx2"), avx512 = __builtin_cpu_supports("avx512f");
+  if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-690.0, 700.0);
+  for (int i = 0; i < 100000; i += 8) {
+    double x[8], y4[8], y8[8];
+    for (int k = 0; k < 8; ++k) {
+      const int t = i + k;
+      x[k] = t < 64 ? std::ldexp(1.0 + double(t % 16) / 16.0, t / 16 - 2)  // steps, octaves
+             : t < 80 ? std::nextafter(1.0, t % 2 ? 2.0 : 0.0) * (1.0 + 1e-9 * (t - 64))
+                      : std::exp(u(rng));
+    }
+    log4_store(x, y4);
+    log4_store(x + 4, y4 + 4);
+    if (avx512) log8_store(x, y8);
+    for (int k = 0; k < 8; ++k) {
+      const double one = log_one(x[k]);
+      ASSERT_EQ(std::memcmp(&y4[k], &one, 8), 0) << x[k];
+      if (avx512) {
+        ASSERT_EQ(std::memcmp(&y8[k], &one, 8), 0) << x[k];
+      }
     }
   }
 }
