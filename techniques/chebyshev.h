@@ -53,6 +53,17 @@ __attribute__((target("avx2"))) inline void bilinear_weights4(__m256d fx, __m256
   w[3] = _mm256_mul_pd(fx, fy);
 }
 
+// bilinear_weights for 8 lanes in double (AVX-512).
+__attribute__((target("avx512f"))) inline void bilinear_weights8(__m512d fx, __m512d fy,
+                                                                 __m512d w[4]) {
+  const __m512d one = _mm512_set1_pd(1.0);
+  const __m512d ox = _mm512_sub_pd(one, fx), oy = _mm512_sub_pd(one, fy);
+  w[0] = _mm512_mul_pd(ox, oy);
+  w[1] = _mm512_mul_pd(fx, oy);
+  w[2] = _mm512_mul_pd(ox, fy);
+  w[3] = _mm512_mul_pd(fx, fy);
+}
+
 // mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits;
 // in two halves (mean, then the variance about it) for callers that may skip the second.
 __attribute__((target("avx2"))) inline __m256d mixture_mean4(const __m256d* w, const __m256d* A) {

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "core/cpu_features.h"
 #include "core/parallel.h"
 #include "techniques/chebyshev.h"
 #include "techniques/map_filter.h"
@@ -142,6 +143,37 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const fl
   }
 }
 #undef SL_AVX2
+
+// 8 floats widened to doubles: the zero-masked conversion with every lane on (GCC 12's unmasked
+// one passes an undefined source that -Wmaybe-uninitialized reports; the same instruction).
+__attribute__((target("avx512f"))) inline __m512d widen8(const float* p) {
+  return _mm512_maskz_cvtps_pd(0xFF, _mm256_loadu_ps(p));
+}
+
+// msm_batch_avx2's operations on all 8 lanes at once (msm_intensity8).
+__attribute__((target("avx512f,avx512dq"))) void msm_batch_avx512(
+    const MsmConsts& k, const float (*v)[4][8], const float* fx, const float* fy,
+    const float* depth, float* out) {
+  const __m512d one = _mm512_set1_pd(1.0);
+  __m512d w[4];
+  bilinear_weights8(widen8(fx), widen8(fy), w);
+  __m512d m[4];
+  for (int j = 0; j < 4; ++j) {
+    m[j] = _mm512_setzero_pd();
+    for (int i = 0; i < 4; ++i) m[j] = _mm512_add_pd(m[j], _mm512_mul_pd(w[i], widen8(v[j][i])));
+  }
+  if (k.quantize16) {
+    const __m512d q[4] = {_mm512_sub_pd(m[0], _mm512_set1_pd(kMsmOffset)), m[1], m[2], m[3]};
+    for (int j = 0; j < 4; ++j) {
+      __m512d s = _mm512_mul_pd(q[0], _mm512_set1_pd(kMsmInverse[0][j]));
+      for (int i = 1; i < 4; ++i)
+        s = _mm512_add_pd(s, _mm512_mul_pd(q[i], _mm512_set1_pd(kMsmInverse[i][j])));
+      m[j] = s;
+    }
+  }
+  const __m512d g = msm_intensity8(m, widen8(depth), k.alpha, k.hausdorff);
+  _mm256_storeu_ps(out, _mm512_maskz_cvtpd_ps(0xFF, _mm512_sub_pd(one, g)));
+}
 #endif
 
 // 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
@@ -152,6 +184,7 @@ struct MsmBatch {
   Bilinear8x2Fn bilinear8x4;
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
+  bool avx512;  // the reconstruction in 8 lanes (use_avx512_paths) or in two halves of 4
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
     if (prefetch8) prefetch8(c, r, moments, 4);
   }
@@ -159,7 +192,10 @@ struct MsmBatch {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8x4(c, r, moments, v, fx, fy);
 #if defined(__x86_64__)
-    msm_batch_avx2(k, v, fx, fy, r.depth, out);
+    if (avx512)
+      msm_batch_avx512(k, v, fx, fy, r.depth, out);
+    else
+      msm_batch_avx2(k, v, fx, fy, r.depth, out);
 #endif
   }
 };
@@ -179,7 +215,8 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       for (int j = 0; j < 4; ++j) P[j][i] = map.a[fi][4 * idx[i] + size_t(j)];
     return msm_value(k, P, bl.fx, bl.fy, r.depth);
   };
-  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a), prefetch8_simd()};
+  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a), prefetch8_simd(),
+                 use_avx512_paths()};
   const bool gathers = batch.bilinear8x4 != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);

@@ -208,23 +208,31 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
 }
 
 #if defined(__x86_64__)
-__attribute__((target("avx2"))) void intensity4(const double (*m)[4], const double* z,
+// The kernels on lanes m[k][lane] (moment k + 1), z[lane].
+__attribute__((target("avx2"))) void intensity4(const double (*m)[8], const double* z,
                                                 double alpha, bool hausdorff, double* out) {
   __m256d mv[4];
   for (int k = 0; k < 4; ++k) mv[k] = _mm256_loadu_pd(m[k]);
   _mm256_storeu_pd(out, msm_intensity4(mv, _mm256_loadu_pd(z), alpha, hausdorff));
 }
+__attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[8],
+                                                            const double* z, double alpha,
+                                                            bool hausdorff, double* out) {
+  __m512d mv[4];
+  for (int k = 0; k < 4; ++k) mv[k] = _mm512_loadu_pd(m[k]);
+  _mm512_storeu_pd(out, msm_intensity8(mv, _mm512_loadu_pd(z), alpha, hausdorff));
+}
 
-// The 4-lane form against the scalar bits: random distributions, α = 0 (singular and NaN
+// A `lanes`-wide form against the scalar bits: random distributions, α = 0 (singular and NaN
 // lanes included: one-depth footprints) and the default, both variants.
-TEST(MomentBound, AvxLanesGiveTheScalarBits) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+template <class Kernel>
+void expect_scalar_bits(int lanes, const Kernel& kernel) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    double m[4][4], z[4];
-    for (int lane = 0; lane < 4; ++lane) {
+    double m[4][8], z[8];
+    for (int lane = 0; lane < lanes; ++lane) {
       const int n = (trial + lane) % 5 + 1;  // 1 atom: a singular matrix
       double mm[4];
       moments_of(random_atoms(rng, n), mm);
@@ -233,9 +241,9 @@ TEST(MomentBound, AvxLanesGiveTheScalarBits) {
     }
     for (const double alpha : {0.0, 3e-6, 1e-2})
       for (const bool hausdorff : {false, true}) {
-        double got[4];
-        intensity4(m, z, alpha, hausdorff, got);
-        for (int lane = 0; lane < 4; ++lane) {
+        double got[8];
+        kernel(m, z, alpha, hausdorff, got);
+        for (int lane = 0; lane < lanes; ++lane) {
           const double mm[4] = {m[0][lane], m[1][lane], m[2][lane], m[3][lane]};
           const double want = msm_intensity(mm, z[lane], alpha, hausdorff);
           ASSERT_EQ(std::memcmp(&got[lane], &want, 8), 0)
@@ -244,7 +252,17 @@ TEST(MomentBound, AvxLanesGiveTheScalarBits) {
         }
       }
   }
-  EXPECT_EQ(compared, 4000 * 4 * 6);
+  EXPECT_EQ(compared, 4000 * lanes * 6);
+}
+
+TEST(MomentBound, AvxLanesGiveTheScalarBits) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  expect_scalar_bits(4, intensity4);
+}
+
+TEST(MomentBound, Avx512LanesGiveTheScalarBits) {
+  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  expect_scalar_bits(8, intensity8);
 }
 #endif
 
