@@ -218,7 +218,8 @@ SL_MSM_AVX512 inline __m512d msm_intensity8(const __m512d m[4], __m512d z, doubl
               _mm512_xor_pd(zu, _mm512_set1_pd(-0.0)));
       const __m512d wu = div(add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])),
                              mul(mul(u, sub(u, one)), sub(u, z)));
-      const __m512d g4 = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(u, z, _CMP_LT_OQ), w0, add(w0, wu));
+      const __m512d g4 =
+          _mm512_mask_blend_pd(_mm512_cmp_pd_mask(u, z, _CMP_LT_OQ), w0, add(w0, wu));
       g = _mm512_mask_blend_pd(out, g, g4);
     }
   }
