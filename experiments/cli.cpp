@@ -455,9 +455,9 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
         return 0;
       }
       if (std::string(argv[i]) == "--version") {
-        // The commit is the one the build was configured from (a later commit needs a cmake
-        // re-run to show).
-        std::printf("%s (shadowlab) commit %s, compiler %s\n", prog.c_str(), SHADOWLAB_COMMIT,
+        // The commit of the sources built (experiments/CMakeLists.txt: "-dirty" for
+        // uncommitted changes).
+        std::printf("%s (shadowlab) commit %s, compiler %s\n", prog.c_str(), build_commit(),
                     __VERSION__);
         return 0;
       }

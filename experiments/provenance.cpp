@@ -12,9 +12,7 @@
 #include "core/parallel.h"
 #include "core/scene_hash.h"
 
-#ifndef SHADOWLAB_COMMIT
-#define SHADOWLAB_COMMIT "unknown"
-#endif
+#include "shadowlab_commit.h"  // SHADOWLAB_COMMIT, generated at build time
 
 namespace shadowlab {
 namespace {
