@@ -11,6 +11,7 @@
 #include "core/image_io.h"
 #include "core/output_file.h"
 #include "experiments/provenance.h"
+#include "metric/flip.h"
 
 namespace shadowlab {
 
@@ -36,6 +37,16 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
   j["from_cache"] = r.from_cache;
   j["notes"] = r.notes;
   write_text_file(base + "timing.json", j.dump(2) + "\n");
+}
+
+void write_flip_map(const std::string& base, const ImageF& flip, const nlohmann::json& provenance) {
+  ExrAttributes attributes = provenance_attributes(provenance);
+  attributes.emplace_back("shadowlab:content", "LDR-FLIP error map of the shaded image");
+  write_exr_mask(base + ".exr", flip, attributes);
+  // write_png_grey encodes linear values as sRGB: give it the value whose encoding is the error.
+  ImageF shown = flip;
+  for (float& v : shown.data) v = float(srgb_to_linear(double(v)));
+  write_png_grey(base + ".png", shown);
 }
 
 nlohmann::json timing_json(const ShadowResult& r) {

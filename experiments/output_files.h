@@ -16,6 +16,10 @@ void write_result_files(const std::string& dir, const std::string& prefix, const
                         const std::string& technique, double camera_ms,
                         const nlohmann::json& provenance, const ImageF* shaded = nullptr);
 
+// A FLIP error map (metric/flip.h) as base + "flip.exr" (float "Y", the exact values) and
+// base + "flip.png" (8-bit grey whose level is the error: 0 black, 1 white).
+void write_flip_map(const std::string& base, const ImageF& flip, const nlohmann::json& provenance);
+
 // The per-phase times and work counts of a result, as written in timing.json and sweep.json:
 // {"faces_ms", "render_ms", "filter_ms", "map_ms", "lookup_ms", "shadow_ms", "work": {...}}.
 nlohmann::json timing_json(const ShadowResult& r);

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
     std::optional<double> ambient;
     add_text(cl, "--sheet", "KIND", "contact sheet of masks or shaded images: mask or shaded (default mask)", sheet);
     add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
+    add_switch(cl, "--flip-map", "also write each row's LDR-FLIP error map of its shaded image against the reference's (PREFIX_flip.exr, .png)", c.flip_map);
     std::string suite;
     add_text(cl, "--suite", "NAME", "run every scene of a suite (hard: grazing, contact, depth_range, cluttered; all: those + default, foliage, bunny) instead of --scene: a table per scene in --out/SCENE/, then each setting's fidelity and total per scene with the mean and the worst (default: none)", suite);
     std::string shard;

@@ -4,6 +4,7 @@
 #include <set>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -21,6 +22,7 @@
 #include "experiments/json_read.h"
 #include "experiments/output_files.h"
 #include "experiments/provenance.h"
+#include "metric/flip.h"
 #include "techniques/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 
@@ -96,14 +98,22 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.reference.result = run_technique(ref_spec, scene, g, ref_opt);
   out.reference.report = compute_metric(out.reference.result.mask, out.reference.result.mask,
                                          nullptr, nullptr, weights, &scratch);
-  // Shaded images: written beside the masks, and kept downscaled to the contact sheet's cell.
+  // Shaded images: written beside the masks, kept downscaled to the contact sheet's cell, and
+  // scored by FLIP against the reference's (metric/flip.h: what a person sees; the reference's
+  // half prepared once), with the error map beside them on request (--flip-map).
   const int cell_factor = contact_sheet_layout({}, {}, g.width, g.height, true).factor;
+  FlipPrepared ref_shaded;
   auto shade = [&](SweepRow& row, const std::string& prefix, const std::string& spec_text) {
     const ImageF shaded = shade_scene(scene, g, row.result.mask, config.ambient);
     row.shaded_cell = box_downscale(shaded, cell_factor);
-    if (!config.out_dir.empty())
+    if (ref_shaded.width == 0) ref_shaded = flip_prepare(shaded);  // the reference comes first
+    const ImageF flip = flip_error_map(flip_prepare(shaded), ref_shaded);
+    row.flip_shaded = flip_mean(flip);
+    if (!config.out_dir.empty()) {
       write_result_files(config.out_dir, prefix, row.result, spec_text, out.camera_ms, out.provenance,
                          &shaded);
+      if (config.flip_map) write_flip_map(config.out_dir + "/" + prefix + "flip", flip, out.provenance);
+    }
   };
   shade(out.reference, "reference_", ref_spec.text);
   step_progress_line(config.progress, ++done, total, "reference", start);
@@ -148,9 +158,9 @@ std::string sweep_table(const SweepResult& r) {
   // The label column fits the longest label (at least 18 wide: "CSM 1024", "RT 1024spp").
   int w = 18;
   for (const SweepRow& row : r.rows) w = std::max(w, int(std::min<size_t>(row.label.size(), 200)));
-  s += fmt::format("{:<{}} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>10} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
+  s += fmt::format("{:<{}} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>7} {:>10} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
                    "method", w, "c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail",
-                   "shadow ms", "RP", "total", "Mtexels", "taps/px", "MB");
+                   "shadow ms", "RP", "total", "FLIP", "Mtexels", "taps/px", "MB");
   auto add = [&](const SweepRow& row, bool is_ref) {
     const MetricReport& m = row.report;
     const std::string time =
@@ -167,9 +177,9 @@ std::string sweep_table(const SweepResult& r) {
       mb = fmt::format("{:.1f}", double(wk.bytes_touched()) * 1e-6);
     }
     s += fmt::format(
-        "{:<{}} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:7.3f} {:>10} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
+        "{:<{}} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:6.3f} {:7.3f} {:>10} {:>6} {:>6} {:6.4f} {:>8} {:>7} {:>7}\n",
         row.label, w, m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise, m.detail, time, rp,
-        total, tex, taps, mb);
+        total, m.flip_mean, tex, taps, mb);
   };
   add(r.reference, true);
   for (const SweepRow& row : r.rows) add(row, false);
@@ -190,7 +200,8 @@ nlohmann::json row_json(const SweepRow& row) {
            {"c10", m.c10}, {"c50", m.c50}, {"c90", m.c90}, {"dark", m.dark}, {"lit", m.lit},
            {"acne", m.acne}, {"noise", m.noise}, {"detail", m.detail},
            {"fidelity", m.fidelity}, {"aesthetics", m.aesthetics}, {"ssim", m.ssim},
-           {"rmse", m.rmse}, {"psnr", m.psnr}, {"total", m.total}})
+           {"rmse", m.rmse}, {"psnr", m.psnr}, {"total", m.total}, {"flip_mean", m.flip_mean},
+           {"flip_shaded", row.flip_shaded}})
     j[k] = v;
   if (m.has_performance) j["performance"] = m.performance;
   j.update(timing_json(row.result));
@@ -212,7 +223,7 @@ void write_sweep_csv(const std::string& path, const std::vector<const SweepResul
   // One "# provenance {...}" line per scene before the header (pandas: comment='#').
   for (const SweepResult* r : results) f << "# provenance " << r->provenance.dump() << "\n";
   f << "scene,label,spec,res,c10,c50,c90,dark,lit,acne,noise,detail,ssim,rmse,psnr,shadow_ms,map_ms,"
-       "lookup_ms,performance,total,faces_rendered," << work_csv_header() << "\n";
+       "lookup_ms,performance,total,flip_mean,flip_shaded,faces_rendered," << work_csv_header() << "\n";
   const SweepResult* current = nullptr;
   auto add = [&](const SweepRow& row) {
     const MetricReport& m = row.report;
@@ -229,10 +240,10 @@ void write_sweep_csv(const std::string& path, const std::vector<const SweepResul
     if (m.has_performance) perf = fmt::format("{:.6f}", m.performance);
     f << fmt::format(
              "\"{}\",\"{}\",{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},"
-             "{},{},{},{},{:.6f},{},",
+             "{},{},{},{},{:.6f},{:.6f},{:.6f},{},",
              row.label, row.spec, row.res, m.c10, m.c50, m.c90, m.dark, m.lit, m.acne, m.noise,
-             m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup, perf, m.total,
-             row.result.faces_rendered)
+             m.detail, m.ssim, m.rmse, m.psnr, shadow, map, lookup, perf, m.total, m.flip_mean,
+             row.flip_shaded, row.result.faces_rendered)
       << work_csv_values(row.result) << "\n";
   };
   for (const SweepResult* r : results) {
@@ -344,6 +355,9 @@ SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
            {"ssim", &MetricReport::ssim}, {"rmse", &MetricReport::rmse}, {"psnr", &MetricReport::psnr},
            {"total", &MetricReport::total}})
     m.*v = j.at(k).get<double>();
+  // FLIP since 2026-12-01: files written before have neither key (NaN then: "not measured").
+  m.flip_mean = j.contains("flip_mean") ? j.at("flip_mean").get<double>() : std::nan("");
+  row.flip_shaded = j.contains("flip_shaded") ? j.at("flip_shaded").get<double>() : std::nan("");
   m.has_performance = j.contains("performance");
   if (m.has_performance) m.performance = j.at("performance").get<double>();
   ShadowResult& r = row.result;

@@ -26,6 +26,7 @@ struct SweepConfig {
   uint64_t max_memory = 0;      // refuse runs estimated above this many bytes (0: what is available)
   float ambient = 0.1f;         // ambient level of the shaded images (techniques/scene_shading.h)
   bool shaded_sheet = false;    // contact sheet of shaded images (--sheet shaded), else masks
+  bool flip_map = false;        // write each row's FLIP error map of the shaded image (--flip-map)
   int shard = 0, shards = 1;    // run only rows with index mod shards == shard (--shard i/N)
 };
 
@@ -38,6 +39,7 @@ struct SweepRow {
   ShadowResult result;
   MetricReport report;
   ImageF shaded_cell;           // the shaded image box-downscaled to the contact sheet's cell
+  double flip_shaded = 0.0;     // mean LDR-FLIP of the shaded image against the reference's
 };
 
 struct SweepResult {

@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     add_text_repeated(cl, "--space", "SPEC", "a technique's parameter space, e.g. csm:res=256..2048/x2,pcf=1|3|5 (repeatable; README \"Tuning\" gives the syntax; default: the README's eight spaces)", spaces);
     add_double_list(cl, "--budget-ms", "LIST", "shadow-time budgets in ms (default 2,4,8,16,32)", budgets_ms, 1e-6, 1e9);
     add_double_list(cl, "--budget-bytes", "LIST", "map-bytes-touched budgets in bytes, e.g. 4e6,16e6 (default: none)", budgets_bytes, 1.0, 1e18);
-    add_text(cl, "--objective", "NAME", "what to maximize: total, fidelity, aesthetics, detail, ssim, psnr, c10, c50, c90, dark, lit, acne or noise (default total)", objective);
+    add_text(cl, "--objective", "NAME", "what to maximize: total, fidelity, aesthetics, detail, ssim, psnr, c10, c50, c90, dark, lit, acne, noise or flip (1 - mean FLIP of the masks) (default total)", objective);
     add_text(cl, "--metric-weights", "LIST", "weights of the total, e.g. fidelity=1,aesthetics=1,detail=1,performance=0 (default: those; time enters through the budgets)", weights);
     add_text(cl, "--strategy", "S", "grid (every point at full size), halving (successive halving) or auto (grid up to 96 evaluations) (default auto)", strategy);
     add_int(cl, "--max-evals", "N", "refuse a search costing more full-size evaluations than N (default 2000)", max_evals, 1, 100000000);

@@ -1,5 +1,6 @@
 #include "experiments/tune_report.h"
 
+#include <cmath>
 #include <algorithm>
 #include <map>
 #include <set>
@@ -26,7 +27,7 @@ std::vector<std::pair<const char*, double MetricReport::*>> report_fields() {
           {"fidelity", &MetricReport::fidelity}, {"aesthetics", &MetricReport::aesthetics},
           {"performance", &MetricReport::performance}, {"total", &MetricReport::total},
           {"ssim", &MetricReport::ssim},     {"rmse", &MetricReport::rmse},
-          {"psnr", &MetricReport::psnr}};
+          {"psnr", &MetricReport::psnr},     {"flip_mean", &MetricReport::flip_mean}};
 }
 
 std::vector<std::pair<const char*, uint64_t WorkCounts::*>> work_fields() {
@@ -76,7 +77,10 @@ TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   e.height = int(json_uint(j, "height", 1 << 20, where));
   e.spp = int(json_uint(j, "spp", 1 << 30, where));
   e.objective = j.at("objective").get<double>();
-  for (const auto& [k, m] : report_fields()) e.report.*m = j.at(k).get<double>();
+  // flip_mean since 2026-12-01: a file written before has none (NaN: not measured).
+  for (const auto& [k, m] : report_fields())
+    e.report.*m = std::string(k) == "flip_mean" && !j.contains(k) ? std::nan("")
+                                                                  : j.at(k).get<double>();
   e.report.has_performance = j.at("has_performance").get<bool>();
   e.faces_ms = j.at("faces_ms").get<double>();
   e.render_ms = j.at("render_ms").get<double>();

@@ -115,7 +115,7 @@ TuneEval evaluate(const Point& p, const SceneRung& sr, int rung, const TuneConfi
 const std::vector<std::string>& tune_objectives() {
   static const std::vector<std::string> names = {
       "total", "fidelity", "aesthetics", "detail", "ssim", "psnr", "c10", "c50", "c90",
-      "dark",  "lit",      "acne",       "noise"};
+      "dark",  "lit",      "acne",       "noise", "flip"};
   return names;
 }
 
@@ -133,6 +133,7 @@ double objective_value(const MetricReport& m, const std::string& o) {
   if (o == "lit") return m.lit;
   if (o == "acne") return m.acne;
   if (o == "noise") return m.noise;
+  if (o == "flip") return 1.0 - m.flip_mean;  // maximized: 1 − mean FLIP of the masks
   std::string list;
   for (const std::string& n : tune_objectives()) list += (list.empty() ? "" : ", ") + n;
   throw InputError("--objective", "unknown objective '" + o + "' (one of: " + list + ")");

@@ -33,7 +33,8 @@ std::string metric_report_json(const MetricReport& r) {
                                {"total", r.total},
                                {"ssim", r.ssim},
                                {"rmse", r.rmse},
-                               {"psnr", r.psnr}});
+                               {"psnr", r.psnr},
+                               {"flip_mean", r.flip_mean}});
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [key, v] : fields)
     j[key] = std::isfinite(v) ? nlohmann::ordered_json(v == 0.0 ? 0.0 : v) : nlohmann::ordered_json(nullptr);
@@ -63,6 +64,7 @@ std::string metric_report_table(const MetricReport& r) {
       {"ssim", number(r.ssim), "mean SSIM, unblurred masks"},
       {"rmse", number(r.rmse), "RMSE, unblurred masks"},
       {"psnr", number(r.psnr), "dB, capped at 100"},
+      {"flip_mean", number(r.flip_mean), "mean LDR-FLIP, masks as grey images (0 = same)"},
       {"blur", std::to_string(r.blur_size) + "x" + std::to_string(r.blur_size),
        "box blur before contours and coverage"},
   };

@@ -5,11 +5,13 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/parallel.h"
 #include "metric/box_blur.h"
 #include "metric/contour.h"
 #include "metric/coverage.h"
 #include "metric/detail.h"
+#include "metric/flip.h"
 #include "metric/image_error.h"
 #include "metric/metric_input.h"
 #include "metric/roughness.h"
@@ -62,7 +64,7 @@ MetricReport compute_metric(const ImageF& test, const ImageF& ref, const ImageU3
 
   std::array<double, 3> cm{};
   RobertsSums rs;
-  parallel_for(0, 4, [&](size_t task) {
+  parallel_for(0, 5, [&](size_t task) {
     switch (task) {
       case 0:  // 2–3. Contour match at the three levels.
         cm = contour_scores(bt, br, s.contour);
@@ -75,10 +77,21 @@ MetricReport compute_metric(const ImageF& test, const ImageF& ref, const ImageU3
       case 2:  // 6. Detail.
         r.detail = detail_score(texels, s.detail);
         break;
-      default:  // 9. Extras on the unblurred masks.
+      case 3:  // 9. Extras on the unblurred masks.
         r.ssim = ssim(test, ref);
         r.rmse = rmse(test, ref);
         break;
+      default: {  // 9. LDR-FLIP of the masks seen as grey images (metric/flip.h).
+        Fnv1a key;
+        key.u64(uint64_t(ref.width) << 32 | uint64_t(ref.height));
+        key.bytes(ref.data.data(), ref.data.size() * sizeof(float));
+        if (s.flip_ref_key != key.h || s.flip_ref.width != ref.width) {
+          s.flip_ref = flip_prepare(ref);
+          s.flip_ref_key = key.h;
+        }
+        r.flip_mean = flip_mean(flip_error_map(flip_prepare(test), s.flip_ref));
+        break;
+      }
     }
   });
   r.c10 = cm[0];

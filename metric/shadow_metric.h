@@ -1,10 +1,12 @@
 #pragma once
 // The shadow quality metric of Kluczek ("Quality Metric for Shadow Rendering") as pinned down in
-// docs/design.md §5: every submetric, the four groups, the weighted total, and SSIM/RMSE/PSNR.
+// docs/design.md §5: every submetric, the four groups, the weighted total, and SSIM/RMSE/PSNR
+// and FLIP.
 #include "core/image.h"
 #include "metric/box_blur.h"
 #include "metric/contour.h"
 #include "metric/detail.h"
+#include "metric/flip.h"
 #include "metric/performance.h"
 
 namespace shadowlab {
@@ -32,6 +34,7 @@ struct MetricReport {
   double ssim = 0;                   // mean SSIM of the unblurred masks
   double rmse = 0;                   // RMSE of the unblurred masks (data range 1)
   double psnr = 0;                   // dB, capped at kPsnrCapDb (identical masks give the cap)
+  double flip_mean = 0;              // mean LDR-FLIP of the masks as grey images (0 = same)
   int blur_size = 0;                 // box-blur side k used for B_T and B_R
 };
 
@@ -42,6 +45,10 @@ struct MetricScratch {
   ImageD blurred_test, blurred_ref;  // B_T and B_R
   ContourScratch contour;
   DetailScratch detail;
+  // The reference's half of FLIP (metric/flip.h), kept for the next call with the same
+  // reference: the key hashes its size and every value (FNV-1a, core/hash.h).
+  FlipPrepared flip_ref;
+  uint64_t flip_ref_key = 0;
 };
 
 // Scores test mask T against reference mask R (1-channel, same size, values in [0, 1]).

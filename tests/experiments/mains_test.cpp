@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -349,10 +350,19 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   std::filesystem::remove(out + "/contact_sheet.png");
   std::filesystem::remove(plot);
   const ProcResult r = run("resolution_sweep --quick --width 96 --height 72 --spp 16 --repeats 1 "
-                    "--resolutions 32,256 --no-cache --out " + out + " --plot " + plot);
+                    "--resolutions 32,256 --no-cache --flip-map --out " + out + " --plot " + plot);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("RT 16spp            1.000  1.000  1.000  1.000  1.000  1.000  1.000   1.000"),
             std::string::npos) << r.out;
+  // The reference's FLIP against itself is 0 (the column after total).
+  EXPECT_NE(r.out.find("1.000 0.0000"), std::string::npos) << r.out;
+  // --flip-map: each row's error map of its shaded image, the reference's all zero.
+  for (const char* f : {"reference_flip.exr", "reference_flip.png", "csm_32_flip.exr", "csm_256_flip.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  const ImageF ref_flip = read_exr_mask(out + "/reference_flip.exr");
+  for (float v : ref_flip.data) ASSERT_EQ(v, 0.0f);
+  const ImageF flip32 = read_exr_mask(out + "/csm_32_flip.exr");
+  EXPECT_GT(*std::max_element(flip32.data.begin(), flip32.data.end()), 0.0f);
   EXPECT_NE(r.out.find("CSM 32"), std::string::npos);
   EXPECT_NE(r.out.find("CSM 256"), std::string::npos);
   for (const char* f : {"sweep.csv", "sweep.json", "reference_mask.exr", "csm_256_mask.exr"})

@@ -26,6 +26,13 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
   const MetricReport& ref = r.reference.report;
   for (double v : {ref.c10, ref.c50, ref.c90, ref.dark, ref.lit, ref.acne, ref.noise, ref.detail})
     EXPECT_DOUBLE_EQ(v, 1.0);
+  // FLIP of the reference against itself is 0, on the masks and on the shaded images; a 32²
+  // map's shadows are visibly off (more FLIP than a 512² map's), on both.
+  EXPECT_EQ(ref.flip_mean, 0.0);
+  EXPECT_EQ(r.reference.flip_shaded, 0.0);
+  EXPECT_GT(r.rows[0].report.flip_mean, r.rows[2].report.flip_mean);
+  EXPECT_GT(r.rows[0].flip_shaded, r.rows[2].flip_shaded);
+  EXPECT_GT(r.rows[2].flip_shaded, 0.0);
   // Finer maps: more texels per pixel (detail) and a better match (fidelity).
   EXPECT_LT(r.rows[0].report.detail, r.rows[1].report.detail);
   EXPECT_LT(r.rows[1].report.detail, r.rows[2].report.detail);

@@ -136,7 +136,8 @@ TEST(ShadowMetric, JsonHasExactlyTheDocumentedKeys) {
   for (const auto& item : j.items()) keys.insert(item.key());
   EXPECT_EQ(keys,
             (std::set<std::string>{"c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail",
-                                   "fidelity", "aesthetics", "total", "ssim", "rmse", "psnr"}));
+                                   "fidelity", "aesthetics", "total", "ssim", "rmse", "psnr",
+                                   "flip_mean"}));
   EXPECT_NEAR(j["total"].get<double>(), r.total, 5e-7);
   EXPECT_NEAR(j["rmse"].get<double>(), r.rmse, 5e-7);
 
@@ -151,7 +152,7 @@ TEST(ShadowMetric, JsonKeepsTheKeyOrderAndFullPrecision) {
   EXPECT_EQ(metric_report_json(compute_metric(lit, lit, nullptr, nullptr)),
             "{\"c10\":1.0,\"c50\":1.0,\"c90\":1.0,\"dark\":1.0,\"lit\":1.0,\"acne\":1.0,"
             "\"noise\":1.0,\"detail\":1.0,\"fidelity\":1.0,\"aesthetics\":1.0,\"total\":1.0,"
-            "\"ssim\":1.0,\"rmse\":0.0,\"psnr\":100.0}");
+            "\"ssim\":1.0,\"rmse\":0.0,\"psnr\":100.0,\"flip_mean\":0.0}");
   // Values are written exactly (the old writer rounded to 6 decimals).
   const ImageF ref = half_dark(32, 24);
   const MetricReport r = compute_metric(soft_shadow(32, 24, 10, 12, 8, 3), ref, nullptr, nullptr);
