@@ -28,9 +28,9 @@ namespace shadowlab {
 // seen from 0.7 m, 3840 · π/180 (the paper's default, 67.02).
 constexpr double kFlipPixelsPerDegree = 3840.0 * 3.14159265358979323846 / 180.0;
 
-// Per-pixel LDR-FLIP of `test` against `ref`: images of 1 (grey: r = g = b) or 3 channels,
-// same size, holding LINEAR values (masks, shaded radiance); each value is clamped to [0, 1],
-// which is what the sRGB PNG of the image shows (FLIP's first step, sRGB → linear, is then the
+// Per-pixel LDR-FLIP of `test` against `ref`: images of 1 (grey: achromatic, Cx = Cz = 0) or 3
+// channels, same size, holding LINEAR values (masks, shaded radiance); each value is clamped to [0,
+// 1], which is what the sRGB PNG of the image shows (FLIP's first step, sRGB → linear, is then the
 // identity). The result is 1 channel, same size. Throws InputError("flip", …) for empty or
 // differently sized images, a channel count other than 1 or 3, a NaN, or pixels_per_degree
 // outside (0, 1000]. Bit-identical for any thread count.

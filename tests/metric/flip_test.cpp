@@ -132,8 +132,8 @@ Prep prepare_bf(const ImageF& img, LD ppd) {
     };
     const C3 c = lin_to_ycc({v(0), v(1), v(2)});
     ycc[0].push_back(c.a);
-    ycc[1].push_back(c.b);
-    ycc[2].push_back(c.c);
+    ycc[1].push_back(img.channels == 1 ? 0 : c.b);  // a grey image is achromatic (metric/flip.h)
+    ycc[2].push_back(img.channels == 1 ? 0 : c.c);
   }
   const LD params[3][4] = {
       {1, 0.0047L, 0, 1e-5L}, {1, 0.0053L, 0, 1e-5L}, {34.1L, 0.04L, 13.5L, 0.025L}};
