@@ -401,14 +401,31 @@ void hunt_lab_run(Lanes lanes, const Plane* rgb, size_t b, size_t e, std::vector
   }
 }
 
+// CIELAB of a grey image's pixels [b, e) from its filtered Y' plane: L from the cube root of
+// the clamped luminance, a = b = 0.
+void grey_lab_run(Lanes lanes, const double* ycc_y, size_t b, size_t e, std::vector<double>* lab) {
+  const size_t k = e - b;
+  std::vector<double> t(k), f(k);
+  for (size_t i = 0; i < k; ++i) t[i] = std::clamp((ycc_y[b + i] + 16.0) / 116.0, 0.0, 1.0);
+  power_n(lanes, t.data(), nullptr, 1.0 / 3.0, k, f.data());
+  const double delta = 6.0 / 29.0;
+  for (size_t i = 0; i < k; ++i) {
+    const double fy =
+        t[i] > delta * delta * delta ? f[i] : t[i] / (3.0 * delta * delta) + 4.0 / 29.0;
+    lab[0][b + i] = 116.0 * fy - 16.0;
+    lab[1][b + i] = 0.0;
+    lab[2][b + i] = 0.0;
+  }
+}
+
 FlipPrepared flip_prepare(const ImageF& img, double ppd) {
   check_image(img);
   check_ppd(ppd);
   const int w = img.width, h = img.height;
   const size_t n = img.pixel_count();
-  // A 1-channel image is grey: achromatic, Cx = Cz = 0 exactly (the published matrices leave a
-  // residue of ~2e-7·Y there, which x^0.7 would lift to ~1e-6 of FLIP where nothing differs),
-  // so its chroma planes are neither made nor filtered.
+  // A 1-channel image is grey: achromatic throughout, Cx = Cz = 0 and a* = b* = 0 exactly (the
+  // published matrices leave a residue of ~2e-7·Y in a grey's chroma, which x^0.7 would lift to
+  // ~1e-6 of FLIP where nothing differs), so its chroma planes are neither made nor filtered.
   const bool grey = img.channels == 1;
   const int planes = grey ? 1 : 3;
   Plane ycc[3], filtered[3];
@@ -434,19 +451,25 @@ FlipPrepared flip_prepare(const ImageF& img, double ppd) {
   p.pixels_per_degree = ppd;
   for (int c = 0; c < planes; ++c)
     correlate(ycc[c].get(), w, h, csf_kernel(kCsf[c], ppd), filtered[c].get());
-  // Back to linear RGB, then Lab.
-  Plane rgb[3];
-  for (auto& c : rgb) c = plane(n);
-  for_pixels(n, w, [&](size_t i) {
-    const Vec3 v = linear_from_ycxcz(
-        {filtered[0][i], grey ? 0.0 : filtered[1][i], grey ? 0.0 : filtered[2][i]});
-    rgb[0][i] = v.x;
-    rgb[1][i] = v.y;
-    rgb[2][i] = v.z;
-  });
   for (auto& l : p.lab) l.resize(n);
   const Lanes lanes = lanes_here();
-  for_runs(n, w, [&](size_t b, size_t e) { hunt_lab_run(lanes, rgb, b, e, p.lab); });
+  if (grey) {
+    // A grey stays grey: its filtered luminance Y = (Y' + 16)/116, clamped to [0, 1] as the
+    // RGB box clamps it, has L* = 116·f(Y) − 16 and a* = b* = 0.
+    for_runs(n, w,
+             [&](size_t b, size_t e) { grey_lab_run(lanes, filtered[0].get(), b, e, p.lab); });
+  } else {
+    // Back to linear RGB, then Lab.
+    Plane rgb[3];
+    for (auto& c : rgb) c = plane(n);
+    for_pixels(n, w, [&](size_t i) {
+      const Vec3 v = linear_from_ycxcz({filtered[0][i], filtered[1][i], filtered[2][i]});
+      rgb[0][i] = v.x;
+      rgb[1][i] = v.y;
+      rgb[2][i] = v.z;
+    });
+    for_runs(n, w, [&](size_t b, size_t e) { hunt_lab_run(lanes, rgb, b, e, p.lab); });
+  }
   // Features on the normalized luminance of the unfiltered image.
   // Each detector across x is u(x)·g(y), across y g(x)·u(y), with the same normalized g for
   // edges and points: the row pass with g serves both detectors' y derivatives.

@@ -145,6 +145,12 @@ Prep prepare_bf(const ImageF& img, LD ppd) {
   }
   Prep p;
   for (size_t i = 0; i < n; ++i) {
+    if (img.channels == 1) {  // a grey stays grey: L* of the clamped luminance, a* = b* = 0
+      const LD Y = std::clamp((f[0][i] + 16) / 116, LD(0), LD(1)), d = 6.0L / 29.0L;
+      const LD fy = Y > d * d * d ? std::cbrt(Y) : Y / (3 * d * d) + 4.0L / 29.0L;
+      p.lab.push_back({116 * fy - 16, 0, 0});
+      continue;
+    }
     C3 rgb = ycc_to_lin({f[0][i], f[1][i], f[2][i]});
     rgb = {std::clamp(rgb.a, LD(0), LD(1)), std::clamp(rgb.b, LD(0), LD(1)),
            std::clamp(rgb.c, LD(0), LD(1))};
