@@ -226,9 +226,9 @@ Term feature_kernel_x(double ppd, bool point) {
   return {1.0, u, g};
 }
 
-// dst[x] += k·src[x] for x < n: the passes' inner loop, compiled for AVX-512, AVX2 and baseline
-// x86-64 (element-wise IEEE multiply and add, no FMA under -ffp-contract=off: the same bits in
-// every clone). clang 14 (the sanitizer and fuzz builds) has no target_clones here: baseline.
+// dst[x] += k·src[x] for x < n (a kernel's second term onto its first), compiled for AVX-512,
+// AVX2 and baseline x86-64 (element-wise IEEE multiply and add, no FMA under
+// -ffp-contract=off: the same bits in every clone). clang 14 (the sanitizer and fuzz builds) has no target_clones here: baseline.
 #if defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
@@ -243,7 +243,7 @@ __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 void weighted_rows(const double* const* rows, const double* k, int taps, int n, double* out) {
   // GCC's vector extension, so that the vectorization runs across the 16 columns (left to
-  // itself the compiler vectorized across the taps, with gathers, 4× slower).
+  // itself the compiler vectorized across the taps, with gathers: about 2× slower).
   typedef double v4d __attribute__((vector_size(32)));
   int x = 0;
   for (; x + 16 <= n; x += 16) {
