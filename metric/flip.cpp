@@ -228,7 +228,8 @@ Term feature_kernel_x(double ppd, bool point) {
 
 // dst[x] += k·src[x] for x < n (a kernel's second term onto its first), compiled for AVX-512,
 // AVX2 and baseline x86-64 (element-wise IEEE multiply and add, no FMA under
-// -ffp-contract=off: the same bits in every clone). clang 14 (the sanitizer and fuzz builds) has no target_clones here: baseline.
+// -ffp-contract=off: the same bits in every clone). clang 14 (the sanitizer and fuzz builds)
+// has no target_clones here: baseline.
 #if defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
