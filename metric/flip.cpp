@@ -335,8 +335,10 @@ void check_image(const ImageF& im) {
 }
 
 void check_ppd(double ppd) {
-  if (!(ppd > 0.0 && ppd <= 1000.0))
-    throw InputError("flip", "pixels per degree must be in (0, 1000]");
+  // Below 1 pixel per degree the edge detector's taps at ±1 underflow to 0 (σ = 0.041 ppd
+  // pixels) and its normalization would divide 0 by 0.
+  if (!(ppd >= 1.0 && ppd <= 1000.0))
+    throw InputError("flip", "pixels per degree must be in [1, 1000]");
 }
 
 void check_inputs(const ImageF& test, const ImageF& ref, double ppd) {

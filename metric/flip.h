@@ -33,7 +33,7 @@ constexpr double kFlipPixelsPerDegree = 3840.0 * 3.14159265358979323846 / 180.0;
 // 1], which is what the sRGB PNG of the image shows (FLIP's first step, sRGB → linear, is then the
 // identity). The result is 1 channel, same size. Throws InputError("flip", …) for empty or
 // differently sized images, a channel count other than 1 or 3, a NaN, or pixels_per_degree
-// outside (0, 1000]. Bit-identical for any thread count.
+// outside [1, 1000]. Bit-identical for any thread count.
 ImageF flip_error_map(const ImageF& test, const ImageF& ref,
                       double pixels_per_degree = kFlipPixelsPerDegree);
 

@@ -288,6 +288,8 @@ TEST(Flip, BadInputIsRejected) {
   nan.data[3] = std::nanf("");
   EXPECT_THROW(flip_error_map(nan, a), InputError);
   EXPECT_THROW(flip_error_map(a, a, 0.0), InputError);
+  EXPECT_THROW(flip_error_map(a, a, 0.5), InputError);  // the edge detector would be 0/0
+  for (float v : flip_error_map(mask_scene(8, 8, 2, 0.0f), a, 1.0).data) ASSERT_TRUE(std::isfinite(v));
   EXPECT_THROW(flip_error_map(ImageF(), ImageF()), InputError);
 }
 
