@@ -106,8 +106,9 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   auto shade = [&](SweepRow& row, const std::string& prefix, const std::string& spec_text) {
     const ImageF shaded = shade_scene(scene, g, row.result.mask, config.ambient);
     row.shaded_cell = box_downscale(shaded, cell_factor);
-    if (ref_shaded.width == 0) ref_shaded = flip_prepare(shaded);  // the reference comes first
-    const ImageF flip = flip_error_map(flip_prepare(shaded), ref_shaded);
+    const FlipPrepared prepared = flip_prepare(shaded);
+    if (ref_shaded.width == 0) ref_shaded = prepared;  // the reference comes first
+    const ImageF flip = flip_error_map(prepared, ref_shaded);
     row.flip_shaded = flip_mean(flip);
     if (!config.out_dir.empty()) {
       write_result_files(config.out_dir, prefix, row.result, spec_text, out.camera_ms, out.provenance,

@@ -341,15 +341,13 @@ void check_ppd(double ppd) {
     throw InputError("flip", "pixels per degree must be in [1, 1000]");
 }
 
-void check_inputs(const ImageF& test, const ImageF& ref, double ppd) {
+// The pair's sizes (each image and the observer are checked by flip_prepare, before any work).
+void check_sizes(const ImageF& test, const ImageF& ref) {
   if (test.empty() || ref.empty()) throw InputError("flip", "empty image");
   if (test.width != ref.width || test.height != ref.height)
     throw InputError("flip", "images differ in size: " + std::to_string(test.width) + "x" +
                                  std::to_string(test.height) + " against " +
                                  std::to_string(ref.width) + "x" + std::to_string(ref.height));
-  check_image(test);
-  check_image(ref);
-  check_ppd(ppd);
 }
 
 // Calls f(i) for every pixel index i < n, rows of w pixels in parallel (each i writes only its
@@ -493,7 +491,8 @@ FlipPrepared flip_prepare(const ImageF& img, double ppd) {
 }
 
 ImageF flip_error_map(const ImageF& test, const ImageF& ref, double ppd) {
-  check_inputs(test, ref, ppd);
+  check_sizes(test, ref);
+  check_image(ref);  // both checked before the test image's work starts
   return flip_error_map(flip_prepare(test, ppd), flip_prepare(ref, ppd));
 }
 

@@ -270,12 +270,14 @@ TEST(Flip, SeparableFiltersMatchTheEquationsBruteForce) {
 
 TEST(Flip, SameBitsAtAnyThreadCount) {
   const ImageF a = mask_scene(64, 48, 5, 0.0f), b = mask_scene(64, 48, 6, 2.0f);
+  const int saved = thread_count();
   set_thread_count(1);
   const ImageF e1 = flip_error_map(b, a);
   set_thread_count(2);
   const ImageF e2 = flip_error_map(b, a);
   set_thread_count(7);
   const ImageF e7 = flip_error_map(b, a);
+  set_thread_count(saved);
   EXPECT_EQ(e1.data, e2.data);
   EXPECT_EQ(e1.data, e7.data);
 }
