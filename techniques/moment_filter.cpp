@@ -514,6 +514,59 @@ SL_ROW_CLONES void mean_out_k(const double* const* rows, int w, double inv, floa
   }
 }
 
+#if defined(__x86_64__)
+// MSM's four planes' output row straight into the interleaved map: mean_out_k's sums and
+// products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 8 texels at a time, transposed to
+// (m1 m2 m3 m4) per texel and written as two 64-byte lines with non-temporal stores (as
+// core/stream_copy.h writes them; the caller's fused_box fences). What mean_out_k,
+// interleave4_row and the stream copy do in three passes over tmp rows, in one; the same bits
+// (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
+// first 64-byte line and after the last whole 8 go one by one in the same operations.
+template <int K>
+__attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const double* const* rows,
+                                                                   int w, double inv,
+                                                                   float* out) {
+  auto one = [&](int x) {
+    for (int c = 0; c < 4; ++c) {
+      double a = rows[c * K][x];
+      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
+      a *= inv;
+      out[4 * x + c] = float(a);
+    }
+  };
+  const uintptr_t to_line = (64 - (reinterpret_cast<uintptr_t>(out) & 63)) & 63;
+  // A row that cannot reach a line on a texel boundary (never for the map's 16-byte aligned
+  // storage) goes one texel at a time.
+  const int head = to_line % 16 == 0 ? std::min(w, int(to_line / 16)) : w;
+  int x = 0;
+  for (; x < head; ++x) one(x);
+  const __m512d vinv = _mm512_set1_pd(inv);
+  for (; x + 8 <= w; x += 8) {
+    __m256 m[4];
+    for (int c = 0; c < 4; ++c) {
+      __m512d a = _mm512_loadu_pd(rows[c * K] + x);
+      for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(rows[c * K + j] + x));
+      m[c] = _mm512_maskz_cvtpd_ps(0xFF, _mm512_mul_pd(a, vinv));
+    }
+    const __m256 m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
+    // t0 = texels 0 1 | 4 5 of planes 0 1 interleaved; t2 the same of planes 2 3; t1, t3: 2 3 | 6 7.
+    const __m256 t0 = _mm256_unpacklo_ps(m0, m1), t1 = _mm256_unpackhi_ps(m0, m1);
+    const __m256 t2 = _mm256_unpacklo_ps(m2, m3), t3 = _mm256_unpackhi_ps(m2, m3);
+    // u_i = texel i | texel i + 4, each (m1 m2 m3 m4).
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+    const __m256 o0 = _mm256_permute2f128_ps(u0, u1, 0x20), o1 = _mm256_permute2f128_ps(u2, u3, 0x20);
+    const __m256 o2 = _mm256_permute2f128_ps(u0, u1, 0x31), o3 = _mm256_permute2f128_ps(u2, u3, 0x31);
+    // Two whole lines as four 32-byte stores (they fill the same write-combining lines).
+    _mm256_stream_ps(out + 4 * x, o0);
+    _mm256_stream_ps(out + 4 * x + 8, o1);
+    _mm256_stream_ps(out + 4 * x + 16, o2);
+    _mm256_stream_ps(out + 4 * x + 24, o3);
+  }
+  for (; x < w; ++x) one(x);
+}
+#endif
+
 // min(1, min_x finite_dist(row[x])), the ESM filter's shift, in 8 lanes combined in a fixed
 // order (min is exact, so any order gives the same value).
 SL_ROW_CLONES float row_min_dist(const float* row, int w) {
@@ -850,6 +903,9 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   // cube), and not reading each line before writing it made the filter 0.55 ms faster and the
   // lookup 0.2 ms slower (AMD EPYC, README "Technique benchmark").
   const StreamCopy copy = stream_copy_kernel();
+#if defined(__x86_64__)
+  const bool fused512 = interleaved && use_avx512_paths();
+#endif
   auto finish = [&](int y, const SpanCols& s, float* tmp) {
     if (!interleaved) return;
     float* const row = tmp + 4 * size_t(s.n);
@@ -867,6 +923,14 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
               hsum_powers_k<K>(ext_f, s.n, dst[0], dst[1], dst[2], dst[3]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+#if defined(__x86_64__)
+              if (fused512) {
+                msm_out_interleaved_avx512<K>(
+                    win, s.n, inv,
+                    interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0)));
+                return;
+              }
+#endif
               float* const tmp = reinterpret_cast<float*>(scratch);  // 8·n of its 10·w floats
               for (int c = 0; c < 4; ++c)
                 mean_out_k<K>(win + c * K, s.n, inv, row_of(c, y, s, tmp));
