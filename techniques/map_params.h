@@ -83,6 +83,8 @@ struct PcssKeys {
   int taps = 32;             // PCF taps (rotated Poisson disk)
   double search_near = 0.25; // nearest blocker searched for, as a fraction of the receiver's
                              // distance (sets the search disk: README "PCSS")
+  bool model = false;        // estimate=model: the penumbra from the blockers' depth range by
+                             // techniques/penumbra_model.h instead of the mean blocker ratio
 };
 
 struct MapParams {

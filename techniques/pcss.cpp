@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
+#include "techniques/penumbra_model.h"
 #include "techniques/poisson_disk.h"
 #include "techniques/tap_avx2.h"
 
@@ -31,12 +32,13 @@ void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapPar
   k.search = r.get_int("search", k.search, 1, 256);
   k.taps = r.get_int("taps", k.taps, 1, 256);
   k.search_near = r.get_double("search_near", k.search_near, 0.01, 0.99);
+  k.model = r.get_choice("estimate", "classic", {"classic", "model"}) == "model";
   read_rpdb(r, name, flag, p);
 }
 
 std::string keys_text(const MapParams& p) {
-  return fmt::format("light_size=light,search={},taps={},search_near={:g},rpdb=1", p.pcss.search,
-                     p.pcss.taps, p.pcss.search_near);
+  return fmt::format("light_size=light,search={},taps={},search_near={:g},estimate=classic,rpdb=1",
+                     p.pcss.search, p.pcss.taps, p.pcss.search_near);
 }
 
 void filter(const MapParams&, LightMap&) {}  // the stored distances are the map
@@ -47,6 +49,7 @@ struct PcssContext {
   PoissonDisk search, taps;
   double radius;       // light radius / far (normalised distance units)
   double search_near;  // nearest blocker searched for, × the receiver's distance
+  bool model;          // estimate=model (pcss_model_radius)
 };
 
 // The face and continuous coordinates of taps at st of `face`: st itself inside the face's
@@ -137,10 +140,20 @@ float pcss_radius(const PcssContext& c, const PcssLane& l, double blocker_sum, i
                     l.max_radius);
 }
 
+// estimate=model: the penumbra-width model (techniques/penumbra_model.h) with the emitter of
+// radius R at the light, the receiver at depth t and the occluders between the nearest and the
+// farthest blocker found (as its sphere): the PCF radius is half its width w (the kernel centred
+// on the edge spans the whole transition, as the classic radius does: w → 2·R·(t − z_m)/z_m for
+// a thin occluder), as an angle w/(2t), in texels.
+float pcss_model_radius(const PcssContext& c, const PcssLane& l, double z_min, double z_max) {
+  const PenumbraModel m = penumbra_model(c.radius, l.t, z_min, z_max);
+  return std::clamp(float(0.5 * m.width / l.t) * l.texels_per_radian, 1.0f, l.max_radius);
+}
+
 // The four stages for one receiver (the scalar oracle of the batch below).
 float pcss_visibility(const PcssContext& c, const Receiver& r) {
   const PcssLane l = pcss_lane(c, r);
-  double blocker_sum = 0.0;
+  double blocker_sum = 0.0, z_min = 1e300, z_max = 0.0;
   int blockers = 0;
   for (const vec2& q : c.search.points) {
     const vec2 st(r.st.x + l.search_radius * (l.rot_s.x * q.x - l.rot_s.y * q.y),
@@ -148,11 +161,14 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
     const float z = depth_at(c, r.face, st);
     if (z < r.depth + glm::dot(r.grad, st - r.st)) {  // grad: rpdb's plane (else 0)
       blocker_sum += double(z);
+      z_min = std::min(z_min, double(z));
+      z_max = std::max(z_max, double(z));
       ++blockers;
     }
   }
   if (blockers == 0) return 1.0f;
-  const float radius = pcss_radius(c, l, blocker_sum, blockers);
+  const float radius = c.model ? pcss_model_radius(c, l, z_min, z_max)
+                               : pcss_radius(c, l, blocker_sum, blockers);
   // 4. Rotated Poisson PCF over that radius.
   float lit = 0.0f;
   for (const vec2& q : c.taps.points) {
@@ -355,9 +371,11 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
                       poisson_disk(p.pcss.search),
                       poisson_disk(p.pcss.taps),
                       light / double(scene.light.far),
-                      p.pcss.search_near};
+                      p.pcss.search_near,
+                      p.pcss.model};
   auto visibility = [&](const Receiver& r) { return pcss_visibility(c, r); };
-  if (receivers8_simd())
+  // The model estimate runs in the scalar stages only (the AVX2 batch forms the classic one).
+  if (receivers8_simd() && !p.pcss.model)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, PcssBatch{&c, &scene, &g, p.rpdb});
   else
     lookup_pixels(scene, g, p, map, mask, texels, visibility);
