@@ -68,8 +68,27 @@ double crossing(const PenumbraModel& m, double r_e, double z_f, double level, do
 
 }  // namespace
 
+double disk_edge_1090_ratio() {
+  // F(t) = 1/2 + (t·√(1 − t²) + asin t)/π: the share of a unit disk left of the line x = t.
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 60; ++i) {
+    const double t = 0.5 * (lo + hi);
+    (0.5 + (t * std::sqrt(1.0 - t * t) + std::asin(t)) / M_PI >= 0.9 ? hi : lo) = t;
+  }
+  return 0.5 * (lo + hi);
+}
+
 PenumbraTransition penumbra_transition(const PenumbraModel& m, double r_e, double z_f) {
   PenumbraTransition t;
+  if (m.r_s <= 0.0) {
+    // A thin occluder: the sphere has no size, and the model's width means an edge, whose lit
+    // fraction under the disk emitter is the circular segment's share (disk_edge_1090_ratio).
+    const double k = disk_edge_1090_ratio();
+    t.x10 = m.x_b - 0.5 * m.width * (1.0 + k);
+    t.x90 = m.x_b - 0.5 * m.width * (1.0 - k);
+    t.width = k * m.width;
+    return t;
+  }
   t.minimum = penumbra_lit_fraction(m, r_e, z_f, 0.0);
   const double end = std::max(0.0, m.x_b) * (1.0 + 1e-9) + 1e-12;  // fully lit from x_b on
   t.x10 = crossing(m, r_e, z_f, t.minimum + 0.1 * (1.0 - t.minimum), end);

@@ -46,7 +46,12 @@ struct PenumbraTransition {
   double x10 = 0.0, x90 = 0.0;
   double minimum = 0.0;
 };
+// For a thin occluder (z_min = z_max: r_s = 0) the model's sphere has no size and its width
+// means an edge: under a disk emitter a straight edge's lit fraction is the share of the disk
+// beyond a chord, which crosses 10 % and 90 % at ±disk_edge_1090_ratio() (0.6870) of the half
+// width, so the 10–90 % width is that ratio × width.
 PenumbraTransition penumbra_transition(const PenumbraModel& m, double r_e, double z_f);
+double disk_edge_1090_ratio();
 
 // The same rule on a sampled profile: positions x (increasing) and lit fractions v, crossings by
 // linear interpolation between neighbouring samples (the first crossing from the shadowed

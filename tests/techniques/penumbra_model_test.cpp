@@ -119,6 +119,26 @@ TEST(PenumbraModel, ProfileMatchesThe3DBruteForce) {
   }
 }
 
+// A thin occluder's transition is a straight edge's: the circular segment's 10 % and 90 %
+// points, checked by counting a grid over the unit disk.
+TEST(PenumbraModel, ThinOccluderGivesTheDiskEdgeProfile) {
+  const double k = disk_edge_1090_ratio();
+  long double in = 0, left = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -1 + 2 * (i + 0.5) / n, y = -1 + 2 * (j + 0.5) / n;
+      if (x * x + y * y > 1) continue;
+      in += 1;
+      left += x < k ? 1 : 0;
+    }
+  EXPECT_NEAR(double(left / in), 0.9, 2e-5);
+  const PenumbraModel m = penumbra_model(0.1, 3.0, 2.0, 2.0);
+  const PenumbraTransition t = penumbra_transition(m, 0.1, 3.0);
+  EXPECT_NEAR(t.width, k * m.width, 1e-15);
+  EXPECT_NEAR(0.5 * (t.x10 + t.x90), m.x_b - 0.5 * m.width, 1e-15);  // centred on the edge
+}
+
 TEST(PenumbraModel, MeasuredTransitionOfARamp) {
   std::vector<double> x, v;
   for (int i = 0; i <= 40; ++i) {
