@@ -149,7 +149,7 @@ TEST(Mains, CommandLineDocEqualsEveryHelp) {
     EXPECT_EQ(block, expected) << name << ": run bash docs/command_line.sh";
     ++programs;
   }
-  EXPECT_EQ(programs, 11);  // 10 experiments + the registry
+  EXPECT_EQ(programs, 13);  // 12 experiments + the registry
 }
 
 TEST(Mains, RenderOutDefaultsToOutRender) {
@@ -583,6 +583,26 @@ TEST(Mains, VersionAndTechniqueListEverywhere) {
     for (const char* name : {"rt", "csm", "tsm", "psm", "cvsm", "tvsm", "pvsm", "cesm", "tesm", "pesm"})
       EXPECT_NE(l.out.find(std::string("  ") + name + "  "), std::string::npos) << prog << " " << name;
   }
+}
+
+// flicker and penumbra: bad flags are one-line errors before any work; a small flicker run
+// writes its three files.
+TEST(Mains, FlickerAndPenumbraCheckTheirFlags) {
+  const std::string out = test::binary_path("flicker_out");
+  expect_clear_error("flicker --frames 1 --out " + out, "--frames");
+  expect_clear_error("flicker --path camera-pan --jitter --out " + out, "--jitter");
+  expect_clear_error("flicker --path zigzag --out " + out, "--path: unknown path 'zigzag'");
+  expect_clear_error("flicker --techniques csm:res=64 --out " + out, "--techniques");
+  expect_clear_error("flicker --step -1 --out " + out, "--step");
+  expect_clear_error("penumbra --radii 0 --out " + out, "--radii");
+  expect_clear_error("penumbra --scene foliage --out " + out, "--scene");
+  const ProcResult r = run("flicker --techniques csm,rt --resolutions 64 --frames 3 --width 64 --height 48 --spp 4 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"flicker.csv", "flicker.json", "flicker_worst.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  const nlohmann::json j = test::read_json(out + "/flicker.json");
+  EXPECT_EQ(j["rows"].size(), 2u);
+  EXPECT_EQ(j["rows"][1]["excess"].get<double>(), 0.0);  // the reference's own row
 }
 
 TEST(Mains, AlphaFlagsAreChecked) {
