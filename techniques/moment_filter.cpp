@@ -515,6 +515,54 @@ SL_ROW_CLONES void mean_out_k(const double* const* rows, int w, double inv, floa
 }
 
 #if defined(__x86_64__)
+// VSM's (and EVSM's two-value) output row straight into the interleaved plane: vsm_out_k's sums,
+// products and positive part for both planes (rows[0 .. K − 1] the first moments', rows[K ..
+// 2K − 1] the second's), 8 texels at a time, zipped to (mean, variance) per texel and stored as
+// one 64-byte line per 8 texels with ordinary stores (VSM keeps its map in the caches for the
+// lookup: README "Technique benchmark"). What vsm_out_k into scratch and interleave_row did in
+// two passes, in one; the same bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoops-
+// BitForBit). Texels before the first line and after the last whole 8 go one by one.
+template <int K>
+__attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double* const* rows,
+                                                                   int w, double inv,
+                                                                   float* out) {
+  auto one = [&](int x) {
+    double a = rows[0][x], b = rows[K][x];
+    for (int j = 1; j < K; ++j) {
+      a += rows[j][x];
+      b += rows[K + j][x];
+    }
+    a *= inv;
+    b *= inv;
+    out[2 * x] = float(a);
+    out[2 * x + 1] = float(positive_part(b - a * a));
+  };
+  const int head = texels_to_line(out, 2, w);
+  int x = 0;
+  for (; x < head; ++x) one(x);
+  const __m512d vinv = _mm512_set1_pd(inv), zero = _mm512_setzero_pd();
+  for (; x + 8 <= w; x += 8) {
+    __m512d a = _mm512_loadu_pd(rows[0] + x), b = _mm512_loadu_pd(rows[K] + x);
+    for (int j = 1; j < K; ++j) {
+      a = _mm512_add_pd(a, _mm512_loadu_pd(rows[j] + x));
+      b = _mm512_add_pd(b, _mm512_loadu_pd(rows[K + j] + x));
+    }
+    a = _mm512_mul_pd(a, vinv);
+    b = _mm512_mul_pd(b, vinv);
+    const __m512d v = _mm512_sub_pd(b, _mm512_mul_pd(a, a));
+    // positive_part: v where v > 0, else +0 (a NaN too).
+    const __m512d pv = _mm512_mask_mov_pd(zero, _mm512_cmp_pd_mask(v, zero, _CMP_GT_OQ), v);
+    const __m256 mean = _mm512_maskz_cvtpd_ps(0xFF, a), var = _mm512_maskz_cvtpd_ps(0xFF, pv);
+    const __m256 lo = _mm256_unpacklo_ps(mean, var);  // texels 0 1 | 4 5
+    const __m256 hi = _mm256_unpackhi_ps(mean, var);  // texels 2 3 | 6 7
+    _mm256_storeu_ps(out + 2 * x, _mm256_permute2f128_ps(lo, hi, 0x20));
+    _mm256_storeu_ps(out + 2 * x + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
+  }
+  for (; x < w; ++x) one(x);
+}
+#endif
+
+#if defined(__x86_64__)
 // MSM's four planes' output row straight into the interleaved map: mean_out_k's sums and
 // products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 8 texels at a time, transposed to
 // (m1 m2 m3 m4) per texel and written as two 64-byte lines with non-temporal stores (as
@@ -715,6 +763,9 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
                        const MakeRow& make_row, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
+#if defined(__x86_64__)
+  const bool fused512 = use_avx512_paths();  // vsm_out_interleaved_avx512 for stride 2
+#endif
   if (fixed && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
@@ -725,6 +776,13 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
               hsum_k<K>(ext + ew, s.n, dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+#if defined(__x86_64__)
+              if (o.stride == 2 && fused512) {
+                vsm_out_interleaved_avx512<K>(
+                    win, s.n, inv, o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
+                return;
+              }
+#endif
               write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
                              [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
             });
@@ -754,6 +812,9 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
+#if defined(__x86_64__)
+  const bool fused512 = use_avx512_paths();  // vsm_out_interleaved_avx512 for stride 2
+#endif
   // Without the slope term, d² is formed inside the horizontal sums from the float row.
   if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
@@ -766,6 +827,13 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
               hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+#if defined(__x86_64__)
+              if (o.stride == 2 && fused512) {
+                vsm_out_interleaved_avx512<K>(
+                    win, s.n, inv, o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
+                return;
+              }
+#endif
               write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
                              [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
             });
