@@ -14,6 +14,7 @@
 #include "core/parallel.h"
 #include "experiments/cli.h"
 #include "experiments/flicker_run.h"
+#include "experiments/memory_check.h"
 #include "experiments/provenance.h"
 #include "techniques/technique_spec.h"
 
@@ -31,7 +32,6 @@ int main(int argc, char** argv) {
     CommandLine cl = make_command_line("flicker", "[flags]");
     CommonOptions common;
     add_common_options(cl, common);
-    mark_unused(cl, {"--max-memory"}, "flicker keeps one mask per row and frame pair; its maps are one technique's at a time");
     FlickerConfig c;
     std::string techniques = kDefaultTechniques, path = "light-line";
     std::optional<double> step;
@@ -52,6 +52,34 @@ int main(int argc, char** argv) {
     if (!common.height) common.height = 384;
     const Scene scene = scene_from_options(common);
     validate_flicker(scene, c);
+    // Memory, before any work: the largest map and one run's images (check_run_memory), plus
+    // two masks per row kept from frame to frame.
+    {
+      std::vector<TechniqueSpec> specs;
+      size_t rows = 0;
+      for (const std::string& t : c.techniques) {
+        TechniqueSpec s = parse_technique_spec(t, "--techniques");
+        if (s.name == "rt") {
+          ++rows;
+          continue;
+        }
+        for (int res : c.resolutions) {
+          s.params["res"] = std::to_string(res);
+          specs.push_back(s);
+          rows += c.jitter ? 2 : 1;
+        }
+      }
+      const uint64_t limit = max_memory_bytes(common) ? max_memory_bytes(common) : available_memory_bytes();
+      const uint64_t need = estimate_run_memory(scene, specs).total() +
+                            uint64_t(rows + 1) * 2 * uint64_t(scene.camera.width) *
+                                uint64_t(scene.camera.height) * sizeof(float);
+      if (limit && need > limit)
+        throw InputError(max_memory_bytes(common) ? "--max-memory" : "--width",
+                         "this run needs about " + std::to_string(need >> 30) +
+                             " GB (the largest map and a mask per row and frame pair), more than the " +
+                             std::to_string(limit >> 30) + " GB " +
+                             (max_memory_bytes(common) ? "allowed" : "available"));
+    }
     make_output_dir(common.out, "--out");
     const FlickerResult r = measure_flicker(scene, c);
     std::printf("scene %s, %dx%d, path %s, %d frames, step %.6g m, reference %d spp, %d threads\n",

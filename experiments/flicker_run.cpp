@@ -181,6 +181,12 @@ Scene flicker_frame_scene(const Scene& base, const FlickerConfig& c, double step
     }
   const vec3 moved = p - base.light.position;
   s.light.position = p;
+  // The light's range grows by the path's reach, the same in every frame (a range per frame
+  // would change every stored normalised distance from frame to frame).
+  const double reach = c.path == FlickerPath::LightLine     ? double(c.frames - 1) * step
+                       : c.path == FlickerPath::LightCircle ? double(c.frames) * step / M_PI
+                                                            : std::sqrt(3.0) * step;
+  s.light.far = float(double(base.light.far) + reach);
   if (s.projector.enabled) s.projector.position = base.projector.position + moved;
   return s;
 }

@@ -54,7 +54,8 @@ double flicker_default_step(const Scene& scene, const FlickerConfig& c);
 // offsets the light from its base by up to ±step per axis, a fresh counter-based random offset
 // each frame (a light that wobbles in place: a flickering flame, float drift); the pan moves
 // eye and target along the camera's right vector. snap > 0 rounds the light position to the
-// base position plus multiples of snap (metres) per axis.
+// base position plus multiples of snap (metres) per axis. On the light paths the light's range
+// (far) grows by the path's reach, the same in every frame.
 Scene flicker_frame_scene(const Scene& base, const FlickerConfig& c, double step, int frame,
                           double snap = 0.0);
 

@@ -8,10 +8,12 @@
 // and 0.3 m. Table on stdout; penumbra.csv in --out.
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/error.h"
 #include "core/output_file.h"
 #include "experiments/cli.h"
+#include "experiments/memory_check.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
 #include "techniques/penumbra_model.h"
@@ -156,8 +158,14 @@ int main(int argc, char** argv) {
     add_double_list(cl, "--radii", "LIST", "light radii, metres (default 0.03,0.1,0.3)", radii, 1e-4, 1.0);
     add_int(cl, "--spp", "N", "reference samples per point (default 4096)", spp, 16, 1 << 20);
     add_int(cl, "--points", "N", "points per line (default 800)", points, 16, 100000);
-    add_int(cl, "--res", "N", "PCSS map resolution (default 2048)", res, 64, 8192);
+    add_int(cl, "--res", "N", "PCSS map resolution (default 2048)", res, 64, 4096);
     if (!parse_command_line(cl, argc, argv)) return 0;
+    // Checked before any work: the reference's rays per profile, and PCSS's map.
+    if (uint64_t(points) * uint64_t(spp) > (uint64_t(1) << 31))
+      throw InputError("--spp", std::to_string(points) + " points x " + std::to_string(spp) +
+                                    " samples is over 2^31 rays per profile");
+    check_run_memory(make_builtin_scene("default"),
+                     {parse_spec("cpcss:res=" + std::to_string(res), "--res")}, 0);
     make_output_dir(common.out, "--out");
     std::printf("%-26s %6s %8s %8s %8s | %8s %8s %7s | %8s %8s\n", "case", "R m", "model", "x_a",
                 "x_b", "measured", "model", "error", "pcss", "pcss:mod");
@@ -201,14 +209,26 @@ int main(int argc, char** argv) {
         const PenumbraTransition classic = profile(pcss);
         const PenumbraTransition model = profile(pcss + ",estimate=model");
         const double predicted = pt.width * to_floor;
-        const double rel = ref.width > 0.0 ? (predicted - ref.width) / ref.width : 0.0;
-        std::printf("%-26s %6.3f %8.4f %8.4f %8.4f | %8.4f %8.4f %+6.1f%% | %8.4f %8.4f\n",
-                    c.name.c_str(), radius, m.width * to_floor, m.x_a, m.x_b, ref.width, predicted,
-                    100.0 * rel, classic.width, model.width);
+        // A profile that never reaches its 90 % level (a line too short for its transition)
+        // has no width: n/a in the table, NaN in the CSV, never a match.
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        auto width_of = [&](const PenumbraTransition& t) { return t.width > 0.0 ? t.width : nan; };
+        const double rel = ref.width > 0.0 ? (predicted - ref.width) / ref.width : nan;
+        auto cell = [](double v, const char* fmt) {
+          char b[32];
+          if (std::isnan(v)) return std::string("n/a");
+          std::snprintf(b, sizeof b, fmt, v);
+          return std::string(b);
+        };
+        std::printf("%-26s %6.3f %8.4f %8.4f %8.4f | %8s %8.4f %7s | %8s %8s\n", c.name.c_str(),
+                    radius, m.width * to_floor, m.x_a, m.x_b, cell(width_of(ref), "%.4f").c_str(),
+                    predicted, cell(100.0 * rel, "%+.1f%%").c_str(),
+                    cell(width_of(classic), "%.4f").c_str(), cell(width_of(model), "%.4f").c_str());
         char line[1024];
         std::snprintf(line, sizeof line, "\"%s\",%g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,\"%s\"\n",
                       c.name.c_str(), radius, z_f, c.z_min, c.z_max, m.x_a, m.x_b, m.width * to_floor,
-                      predicted, ref.width, rel, classic.width, model.width, c.occluder.c_str());
+                      predicted, width_of(ref), rel, width_of(classic), width_of(model),
+                      c.occluder.c_str());
         csv += line;
       }
     write_text_file(common.out + "/penumbra.csv", csv);

@@ -136,8 +136,10 @@ PcssLane pcss_lane(const PcssContext& c, const Receiver& r) {
 // 2–3. Mean blocker distance and the penumbra's angular radius R·(t − t_b)/(t_b·t), in texels.
 float pcss_radius(const PcssContext& c, const PcssLane& l, double blocker_sum, int blockers) {
   const double tb = blocker_sum / double(blockers);
-  return std::clamp(float(c.radius * (l.t - tb) / (tb * l.t)) * l.texels_per_radian, 1.0f,
-                    l.max_radius);
+  const float r = float(c.radius * (l.t - tb) / (tb * l.t)) * l.texels_per_radian;
+  // 0/0 (no light size and every blocker at distance 0, e.g. 8-bit depth near the light): the
+  // smallest radius, not a NaN tap position.
+  return r == r ? std::clamp(r, 1.0f, l.max_radius) : 1.0f;
 }
 
 // estimate=model: the penumbra-width model (techniques/penumbra_model.h) with the emitter of
@@ -147,7 +149,8 @@ float pcss_radius(const PcssContext& c, const PcssLane& l, double blocker_sum, i
 // a thin occluder), as an angle w/(2t), in texels.
 float pcss_model_radius(const PcssContext& c, const PcssLane& l, double z_min, double z_max) {
   const PenumbraModel m = penumbra_model(c.radius, l.t, z_min, z_max);
-  return std::clamp(float(0.5 * m.width / l.t) * l.texels_per_radian, 1.0f, l.max_radius);
+  const float r = float(0.5 * m.width / l.t) * l.texels_per_radian;
+  return r == r ? std::clamp(r, 1.0f, l.max_radius) : 1.0f;  // as pcss_radius
 }
 
 // The four stages for one receiver (the scalar oracle of the batch below).

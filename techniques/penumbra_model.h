@@ -33,7 +33,9 @@ struct PenumbraModel {
   double width = 0.0;                     // x_a + x_b: one side's umbra-to-lit transition
 };
 
-// Eqs. 1–8. Inputs in any one length unit, z_f > z_max >= z_min > 0, r_e >= 0.
+// Eqs. 1–8. Inputs in any one length unit, z_f > z_max >= z_min > 0, r_e >= 0 (a blocker
+// behind the receiver, z_max >= z_f, as a receiver-plane bias allows, gives a small or negative
+// width, which PCSS clamps to its smallest radius).
 PenumbraModel penumbra_model(double r_e, double z_f, double z_min, double z_max);
 
 // The model's lit fraction at lateral x on the receiver (the grid integral above).

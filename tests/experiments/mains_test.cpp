@@ -596,6 +596,9 @@ TEST(Mains, FlickerAndPenumbraCheckTheirFlags) {
   expect_clear_error("flicker --step -1 --out " + out, "--step");
   expect_clear_error("penumbra --radii 0 --out " + out, "--radii");
   expect_clear_error("penumbra --scene foliage --out " + out, "--scene");
+  expect_clear_error("penumbra --points 100000 --spp 1048576 --out " + out, "--spp: 100000 points");
+  expect_clear_error("flicker --width 4096 --height 4096 --max-memory 1 --out " + out,
+                     "--max-memory: this run needs about");
   const ProcResult r = run("flicker --techniques csm,rt --resolutions 64 --frames 3 --width 64 --height 48 --spp 4 --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"flicker.csv", "flicker.json", "flicker_worst.png"})
