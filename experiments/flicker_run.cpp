@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "experiments/contact_sheet.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/technique.h"
 
@@ -59,14 +61,19 @@ std::string with_res(const std::string& text, int res) {
 
 std::string reference_spec(const FlickerConfig& c) { return "rt:spp=" + std::to_string(c.spp); }
 
-// One technique run's mask for frame f (snap 0: the true light).
-ImageF frame_mask(const Scene& base, const FlickerConfig& c, double step, int f, double snap,
-                  const std::string& spec, const GBuffer& g) {
-  const Scene s = flicker_frame_scene(base, c, step, f, snap);
+// One technique run's mask on a frame's scene.
+ImageF frame_mask(const Scene& frame, const std::string& spec, const GBuffer& g) {
   RunOptions opt;
   opt.want_texels = false;
   opt.flag = "--techniques";
-  return run_technique(parse_technique_spec(spec, "--techniques"), s, g, opt).mask;
+  return run_technique(parse_technique_spec(spec, "--techniques"), frame, g, opt).mask;
+}
+
+// |a − b| per pixel.
+ImageF abs_difference(const ImageF& a, const ImageF& b) {
+  ImageF d(a.width, a.height);
+  for (size_t i = 0; i < d.data.size(); ++i) d.data[i] = std::fabs(a.data[i] - b.data[i]);
+  return d;
 }
 
 // Per-row running sums.
@@ -227,9 +234,17 @@ FlickerResult measure_flicker(const Scene& scene, const FlickerConfig& c) {
     const Scene fs = flicker_frame_scene(scene, c, result.step, f);
     // The light paths keep the camera, so one GBuffer serves every frame.
     if (f == 0 || !light_path(c.path)) render_gbuffer(fs, g);
-    const ImageF ref = frame_mask(scene, c, result.step, f, 0.0, reference_spec(c), g);
+    const ImageF ref = frame_mask(fs, reference_spec(c), g);
+    // The frame's scene once per snap grid (one per resolution with --jitter).
+    std::map<double, Scene> snapped;
+    for (const RowPlan& p : plan)
+      if (p.snap > 0.0 && !snapped.count(p.snap))
+        snapped.emplace(p.snap, flicker_frame_scene(scene, c, result.step, f, p.snap));
     for (size_t r = 0; r < plan.size(); ++r) {
-      ImageF m = frame_mask(scene, c, result.step, f, plan[r].snap, plan[r].spec, g);
+      // The reference's own row is the reference (traced once per frame).
+      ImageF m = plan[r].technique == "rt"
+                     ? ref
+                     : frame_mask(plan[r].snap > 0.0 ? snapped.at(plan[r].snap) : fs, plan[r].spec, g);
       if (f > 0) accumulate(prev[r], m, ref_prev, ref, light_path(c.path) ? g : g_prev, g, acc[r]);
       prev[r] = std::move(m);
     }
@@ -267,32 +282,21 @@ ImageF flicker_strip(const Scene& scene, const FlickerConfig& c, double step, co
   const int cw = (scene.camera.width + factor - 1) / factor;
   const int ch = (scene.camera.height + factor - 1) / factor;
   ImageF strip(sep + cells * (cw + sep), sep + 2 * (ch + sep), 1, 0.5f);
-  GBuffer g_prev, g;
+  GBuffer g;
   ImageF m_prev, r_prev;
   for (int f = first - 1; f <= last; ++f) {
     const Scene fs = flicker_frame_scene(scene, c, step, f);
     render_gbuffer(fs, g);
-    ImageF m = frame_mask(scene, c, step, f, snap, row.spec, g);
-    ImageF r = frame_mask(scene, c, step, f, 0.0, reference_spec(c), g);
+    ImageF m = frame_mask(row.snapped ? flicker_frame_scene(scene, c, step, f, snap) : fs, row.spec, g);
+    ImageF r = frame_mask(fs, reference_spec(c), g);
     if (f >= first) {
       const int x0 = sep + (f - first) * (cw + sep);
       for (int row_i = 0; row_i < 2; ++row_i) {
-        const ImageF& a = row_i == 0 ? m : r;
-        const ImageF& b = row_i == 0 ? m_prev : r_prev;
+        const ImageF cell = box_downscale(row_i == 0 ? abs_difference(m, m_prev) : abs_difference(r, r_prev), factor);
         const int y0 = sep + row_i * (ch + sep);
-        // Box mean of |a − b| over each factor × factor block (partial blocks at the edges).
         for (int y = 0; y < ch; ++y)
-          for (int x = 0; x < cw; ++x) {
-            double s = 0.0;
-            int n = 0;
-            for (int yy = y * factor; yy < std::min(a.height, (y + 1) * factor); ++yy)
-              for (int xx = x * factor; xx < std::min(a.width, (x + 1) * factor); ++xx) {
-                const size_t i = size_t(yy) * size_t(a.width) + size_t(xx);
-                s += std::fabs(double(a.data[i]) - double(b.data[i]));
-                ++n;
-              }
-            strip.data[size_t(y0 + y) * size_t(strip.width) + size_t(x0 + x)] = float(s / n);
-          }
+          for (int x = 0; x < cw; ++x)
+            strip.data[size_t(y0 + y) * size_t(strip.width) + size_t(x0 + x)] = cell.at(x, y);
       }
     }
     m_prev = std::move(m);
