@@ -69,16 +69,9 @@ int main(int argc, char** argv) {
           rows += c.jitter ? 2 : 1;
         }
       }
-      const uint64_t limit = max_memory_bytes(common) ? max_memory_bytes(common) : available_memory_bytes();
-      const uint64_t need = estimate_run_memory(scene, specs).total() +
-                            uint64_t(rows + 1) * 2 * uint64_t(scene.camera.width) *
-                                uint64_t(scene.camera.height) * sizeof(float);
-      if (limit && need > limit)
-        throw InputError(max_memory_bytes(common) ? "--max-memory" : "--width",
-                         "this run needs about " + std::to_string(need >> 30) +
-                             " GB (the largest map and a mask per row and frame pair), more than the " +
-                             std::to_string(limit >> 30) + " GB " +
-                             (max_memory_bytes(common) ? "allowed" : "available"));
+      const uint64_t masks = uint64_t(rows + 1) * 2 * uint64_t(scene.camera.width) *
+                             uint64_t(scene.camera.height) * sizeof(float);
+      check_run_memory(scene, specs, max_memory_bytes(common), masks);
     }
     make_output_dir(common.out, "--out");
     const FlickerResult r = measure_flicker(scene, c);

@@ -50,12 +50,13 @@ uint64_t available_memory_bytes() {
 }
 
 void check_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                      uint64_t max_bytes) {
+                      uint64_t max_bytes, uint64_t extra_image_bytes) {
   const bool given = max_bytes > 0;
   const char* flag = given ? "--max-memory" : "--width";
   const uint64_t limit = given ? max_bytes : available_memory_bytes();
   if (limit == 0) return;
-  const MemoryEstimate m = estimate_run_memory(scene, specs);
+  MemoryEstimate m = estimate_run_memory(scene, specs);
+  m.pixels_bytes += extra_image_bytes;
   if (m.total() <= limit) return;
   throw InputError(flag, "this run needs about " + gb(m.total()) + " (image " + gb(m.pixels_bytes) +
                              ", maps " + gb(m.maps_bytes) + ", scene " + gb(m.scene_bytes) +

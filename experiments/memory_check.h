@@ -25,8 +25,9 @@ MemoryEstimate estimate_run_memory(const Scene& scene, const std::vector<Techniq
 uint64_t available_memory_bytes();
 // Throws InputError("--max-memory" when max_bytes was given, else "--width", "needs about X GB
 // (…), more than the Y GB …") when the estimate exceeds max_bytes (0: the memory available;
-// unknown: no check).
+// unknown: no check). extra_image_bytes: images the experiment keeps beyond one run's (flicker's
+// masks kept from frame to frame), counted with the image share.
 void check_run_memory(const Scene& scene, const std::vector<TechniqueSpec>& specs,
-                      uint64_t max_bytes);
+                      uint64_t max_bytes, uint64_t extra_image_bytes = 0);
 
 }  // namespace shadowlab
