@@ -176,7 +176,8 @@ TEST(Flicker, PathsMoveAsDocumented) {
 
 // Issue 17's expectations on the default scene, the light moving by a quarter of a 1024-map
 // texel per frame: a 128² map flickers more than a 1024² one, and VSM less than one-tap depth
-// compare at equal resolution.
+// compare at equal resolution. Measured (2026-12-02, this configuration): excess csm 0.00088
+// (128) and 0.00047 (1024), a ratio of 1.87; cvsm 0.00078 and 0.00039.
 TEST(Flicker, CoarseMapsFlickerMoreAndVsmLess) {
   const Scene scene = small_default(256, 192);
   FlickerConfig c;
@@ -195,6 +196,7 @@ TEST(Flicker, CoarseMapsFlickerMoreAndVsmLess) {
 // A light wobbling in place by up to a quarter of a 1024-map texel: every map flickers, and
 // with texel snapping (a grid of at least 4 steps) every frame's map is the base light's, so
 // the snapped rows do not change at all: their excess is minus the reference's change.
+// Measured plain changes: 0.00038–0.00070.
 TEST(Flicker, SnappingRemovesTheShimmerOfAWobblingLight) {
   FlickerConfig c;
   c.techniques = {"csm", "cvsm"};
