@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
     for (const std::string& t : split_spec_list(techniques)) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
       if (s.name == "rt") throw InputError("--techniques", "rt is not a light-map technique");
+      // The targets compare every spec at one resolution: a spec's own res would be overridden.
+      if (s.params.count("res"))
+        throw InputError("--techniques", "'" + t + "': give the resolution with --res");
       s.params["res"] = std::to_string(res);
       s.text = spec_text(s);
       validate_technique(s, "--techniques");

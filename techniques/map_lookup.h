@@ -57,6 +57,40 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
   const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? pcf_simd() : nullptr;
   lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
     size_t i = b;
+    // A batch that takes several groups at a time (Batch::kGroups, when its grouped() says so)
+    // gets kGroups 8-pixel groups per call, the next call's receivers computed and prefetched
+    // ahead; the loop below takes what is left (fewer than 8 · kGroups pixels).
+    if constexpr (requires { Batch::kGroups; }) {
+      constexpr int G = Batch::kGroups;
+      constexpr size_t span = 8 * size_t(G);
+      if (!depth1 && !pcf && batch.grouped()) {
+        auto group = [&](size_t at, Receivers8& r) {
+          receivers8(c, &g.position[at].x, &g.geo_normal[at].x, &g.covered[at], r);
+        };
+        Receivers8 cur[G], ahead[G];
+        bool have_ahead = false;
+        for (; i + span <= e; i += span) {
+          for (int h = 0; h < G; ++h) {
+            if (have_ahead)
+              cur[h] = ahead[h];
+            else
+              group(i + 8 * size_t(h), cur[h]);
+          }
+          have_ahead = i + 2 * span <= e;
+          if (have_ahead)
+            for (int h = 0; h < G; ++h) {
+              group(i + span + 8 * size_t(h), ahead[h]);
+              batch.prefetch(c, ahead[h]);
+            }
+          alignas(32) float vis[G][8];
+          batch.groups(c, cur, vis);
+          for (int h = 0; h < G; ++h) {
+            const size_t at = i + 8 * size_t(h);
+            merge8(cur[h], vis[h], &mask.data[at], texels ? &texels->data[at] : nullptr);
+          }
+        }
+      }
+    }
     Receivers8 next;
     bool have_next = false;
     for (; i + 8 <= e; i += 8) {

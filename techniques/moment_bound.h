@@ -122,111 +122,181 @@ SL_MSM_AVX512 inline __m512d sub(__m512d x, __m512d y) { return _mm512_sub_pd(x,
 SL_MSM_AVX512 inline __m512d div(__m512d x, __m512d y) { return _mm512_div_pd(x, y); }
 }  // namespace msm_simd
 
-// msm_intensity for 4 lanes (m[i]: moment i + 1 of each lane).
-SL_MSM_AVX2 inline __m256d msm_intensity4(const __m256d m[4], __m256d z, double alpha,
-                                          bool hausdorff) {
+// msm_intensity for N groups of 4 lanes (m[h][i]: moment i + 1 of group h's lanes); N = 2
+// overlaps two groups' chains of divisions, as msm_intensity8n below.
+template <int N>
+SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z, double alpha,
+                                        bool hausdorff, __m256d* out) {
   using namespace msm_simd;
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
   const __m256d keep = _mm256_set1_pd(1.0 - alpha), pull = _mm256_set1_pd(0.5 * alpha);
-  __m256d b[4];
-  for (int i = 0; i < 4; ++i) b[i] = _mm256_add_pd(_mm256_mul_pd(m[i], keep), pull);
-  const __m256d d22 = sub(b[1], mul(b[0], b[0]));
-  const __m256d e32 = sub(b[2], mul(b[0], b[1]));
-  const __m256d l32 = div(e32, d22);
-  const __m256d d33 = sub(sub(b[3], mul(b[1], b[1])), mul(l32, e32));
-  const __m256d y2 = sub(z, b[0]);
-  const __m256d y3 = sub(sub(mul(z, z), b[1]), mul(l32, y2));
-  const __m256d c3 = div(y3, d33);
-  const __m256d c2 = sub(div(y2, d22), mul(l32, c3));
-  const __m256d c1 = sub(sub(one, mul(b[0], c2)), mul(b[1], c3));
-  const __m256d p = div(c2, c3), q = div(c1, c3);
-  const __m256d r = _mm256_sqrt_pd(sub(mul(mul(p, p), _mm256_set1_pd(0.25)), q));
-  const __m256d hp = mul(_mm256_set1_pd(-0.5), p);
-  const __m256d z2 = sub(hp, r), z3 = add(hp, r);
-  const __m256d g_mid =
-      div(add(sub(mul(z, z3), mul(b[0], add(z, z3))), b[1]), mul(sub(z3, z2), sub(z, z2)));
-  const __m256d g_far = sub(
-      one, div(add(sub(mul(z2, z3), mul(b[0], add(z2, z3))), b[1]), mul(sub(z, z2), sub(z, z3))));
-  __m256d g = _mm256_blendv_pd(g_far, g_mid, _mm256_cmp_pd(z, z3, _CMP_LE_OQ));
-  g = _mm256_blendv_pd(g, zero, _mm256_cmp_pd(z, z2, _CMP_LE_OQ));
+  __m256d b[N][4], d22[N], e32[N], l32[N], d33[N], y2[N], y3[N], c1[N], c2[N], c3[N];
+  __m256d p[N], q[N], r[N], z2[N], z3[N], g[N];
+  for (int h = 0; h < N; ++h)
+    for (int i = 0; i < 4; ++i) b[h][i] = add(mul(m[h][i], keep), pull);
+  for (int h = 0; h < N; ++h) {
+    d22[h] = sub(b[h][1], mul(b[h][0], b[h][0]));
+    e32[h] = sub(b[h][2], mul(b[h][0], b[h][1]));
+  }
+  for (int h = 0; h < N; ++h) l32[h] = div(e32[h], d22[h]);
+  for (int h = 0; h < N; ++h) {
+    d33[h] = sub(sub(b[h][3], mul(b[h][1], b[h][1])), mul(l32[h], e32[h]));
+    y2[h] = sub(z[h], b[h][0]);
+    y3[h] = sub(sub(mul(z[h], z[h]), b[h][1]), mul(l32[h], y2[h]));
+  }
+  for (int h = 0; h < N; ++h) c3[h] = div(y3[h], d33[h]);
+  for (int h = 0; h < N; ++h) {
+    c2[h] = sub(div(y2[h], d22[h]), mul(l32[h], c3[h]));
+    c1[h] = sub(sub(one, mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
+  }
+  for (int h = 0; h < N; ++h) {
+    p[h] = div(c2[h], c3[h]);
+    q[h] = div(c1[h], c3[h]);
+  }
+  for (int h = 0; h < N; ++h)
+    r[h] = _mm256_sqrt_pd(sub(mul(mul(p[h], p[h]), _mm256_set1_pd(0.25)), q[h]));
+  for (int h = 0; h < N; ++h) {
+    const __m256d hp = mul(_mm256_set1_pd(-0.5), p[h]);
+    z2[h] = sub(hp, r[h]);
+    z3[h] = add(hp, r[h]);
+  }
+  for (int h = 0; h < N; ++h) {
+    const __m256d zh = z[h], bh0 = b[h][0], bh1 = b[h][1];
+    const __m256d g_mid = div(add(sub(mul(zh, z3[h]), mul(bh0, add(zh, z3[h]))), bh1),
+                              mul(sub(z3[h], z2[h]), sub(zh, z2[h])));
+    const __m256d g_far =
+        sub(one, div(add(sub(mul(z2[h], z3[h]), mul(bh0, add(z2[h], z3[h]))), bh1),
+                     mul(sub(zh, z2[h]), sub(zh, z3[h]))));
+    g[h] = _mm256_blendv_pd(g_far, g_mid, _mm256_cmp_pd(zh, z3[h], _CMP_LE_OQ));
+    g[h] = _mm256_blendv_pd(g[h], zero, _mm256_cmp_pd(zh, z2[h], _CMP_LE_OQ));
+  }
   if (hausdorff) {
-    const __m256d out = _mm256_or_pd(_mm256_cmp_pd(z2, zero, _CMP_LT_OQ),
-                                     _mm256_cmp_pd(z3, one, _CMP_GT_OQ));
-    if (_mm256_movemask_pd(out) != 0) {
-      const __m256d zp1 = add(z, one);
-      const __m256d u = div(add(sub(b[3], mul(zp1, b[2])), mul(z, b[1])),
-                            add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])));
-      const __m256d zu = mul(z, u);
-      const __m256d w0 =
-          div(sub(add(sub(b[2], mul(add(zp1, u), b[1])), mul(add(add(z, u), zu), b[0])), zu),
-              _mm256_xor_pd(zu, _mm256_set1_pd(-0.0)));
-      const __m256d wu = div(add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])),
-                             mul(mul(u, sub(u, one)), sub(u, z)));
-      const __m256d g4 =
-          _mm256_blendv_pd(w0, add(w0, wu), _mm256_cmp_pd(u, z, _CMP_LT_OQ));
-      g = _mm256_blendv_pd(g, g4, out);
+    for (int h = 0; h < N; ++h) {
+      const __m256d outside = _mm256_or_pd(_mm256_cmp_pd(z2[h], zero, _CMP_LT_OQ),
+                                           _mm256_cmp_pd(z3[h], one, _CMP_GT_OQ));
+      if (_mm256_movemask_pd(outside) == 0) continue;
+      const __m256d zh = z[h];
+      const __m256d* bh = b[h];
+      const __m256d zp1 = add(zh, one);
+      const __m256d u = div(add(sub(bh[3], mul(zp1, bh[2])), mul(zh, bh[1])),
+                            add(sub(bh[2], mul(zp1, bh[1])), mul(zh, bh[0])));
+      const __m256d zu = mul(zh, u);
+      const __m256d w0 = div(
+          sub(add(sub(bh[2], mul(add(zp1, u), bh[1])), mul(add(add(zh, u), zu), bh[0])), zu),
+          _mm256_xor_pd(zu, _mm256_set1_pd(-0.0)));
+      const __m256d wu = div(add(sub(bh[2], mul(zp1, bh[1])), mul(zh, bh[0])),
+                             mul(mul(u, sub(u, one)), sub(u, zh)));
+      const __m256d g4 = _mm256_blendv_pd(w0, add(w0, wu), _mm256_cmp_pd(u, zh, _CMP_LT_OQ));
+      g[h] = _mm256_blendv_pd(g[h], g4, outside);
     }
   }
   // g > 0 ? (g < 1 ? g : 1) : 0, NaN -> 0.
-  const __m256d positive = _mm256_cmp_pd(g, zero, _CMP_GT_OQ);
-  g = _mm256_blendv_pd(one, g, _mm256_cmp_pd(g, one, _CMP_LT_OQ));
-  return _mm256_blendv_pd(zero, g, positive);
+  for (int h = 0; h < N; ++h) {
+    const __m256d positive = _mm256_cmp_pd(g[h], zero, _CMP_GT_OQ);
+    const __m256d c = _mm256_blendv_pd(one, g[h], _mm256_cmp_pd(g[h], one, _CMP_LT_OQ));
+    out[h] = _mm256_blendv_pd(zero, c, positive);
+  }
 }
 
-// msm_intensity for 8 lanes (AVX-512 F and DQ): msm_intensity4's operations with compare masks
-// for its blends, so each lane gets the scalar bits; a division costs the same per instruction
-// as in AVX2 on the machines we measure (AMD EPYC: ~1.15 ns either way), so 8 lanes halve the
-// six divisions' share of the MSM lookup.
-SL_MSM_AVX512 inline __m512d msm_intensity8(const __m512d m[4], __m512d z, double alpha,
-                                            bool hausdorff) {
+// One group of 4 lanes.
+SL_MSM_AVX2 inline __m256d msm_intensity4(const __m256d m[4], __m256d z, double alpha,
+                                          bool hausdorff) {
+  const __m256d group[1][4] = {{m[0], m[1], m[2], m[3]}};
+  __m256d g;
+  msm_intensity4n<1>(group, &z, alpha, hausdorff, &g);
+  return g;
+}
+
+// msm_intensity for N groups of 8 lanes (AVX-512 F and DQ): msm_intensity4's operations with
+// compare masks for its blends, so each lane gets the scalar bits; a division costs the same per
+// instruction as in AVX2 on the machines we measure (AMD EPYC: ~1.15 ns either way), so 8 lanes
+// halve the six divisions' share of the MSM lookup. The chain of divisions and the square root is
+// serial within a group; N > 1 issues independent groups' steps side by side so that one group's
+// division runs while another's waits (the lookup takes 4 groups: README "Technique benchmark").
+template <int N>
+SL_MSM_AVX512 inline void msm_intensity8n(const __m512d (*m)[4], const __m512d* z, double alpha,
+                                          bool hausdorff, __m512d* out) {
   using namespace msm_simd;
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
   const __m512d keep = _mm512_set1_pd(1.0 - alpha), pull = _mm512_set1_pd(0.5 * alpha);
-  __m512d b[4];
-  for (int i = 0; i < 4; ++i) b[i] = add(mul(m[i], keep), pull);
-  const __m512d d22 = sub(b[1], mul(b[0], b[0]));
-  const __m512d e32 = sub(b[2], mul(b[0], b[1]));
-  const __m512d l32 = div(e32, d22);
-  const __m512d d33 = sub(sub(b[3], mul(b[1], b[1])), mul(l32, e32));
-  const __m512d y2 = sub(z, b[0]);
-  const __m512d y3 = sub(sub(mul(z, z), b[1]), mul(l32, y2));
-  const __m512d c3 = div(y3, d33);
-  const __m512d c2 = sub(div(y2, d22), mul(l32, c3));
-  const __m512d c1 = sub(sub(one, mul(b[0], c2)), mul(b[1], c3));
-  const __m512d p = div(c2, c3), q = div(c1, c3);
+  __m512d b[N][4], d22[N], e32[N], l32[N], d33[N], y2[N], y3[N], c1[N], c2[N], c3[N];
+  __m512d p[N], q[N], r[N], z2[N], z3[N], g[N];
+  for (int h = 0; h < N; ++h)
+    for (int i = 0; i < 4; ++i) b[h][i] = add(mul(m[h][i], keep), pull);
+  for (int h = 0; h < N; ++h) {
+    d22[h] = sub(b[h][1], mul(b[h][0], b[h][0]));
+    e32[h] = sub(b[h][2], mul(b[h][0], b[h][1]));
+  }
+  for (int h = 0; h < N; ++h) l32[h] = div(e32[h], d22[h]);
+  for (int h = 0; h < N; ++h) {
+    d33[h] = sub(sub(b[h][3], mul(b[h][1], b[h][1])), mul(l32[h], e32[h]));
+    y2[h] = sub(z[h], b[h][0]);
+    y3[h] = sub(sub(mul(z[h], z[h]), b[h][1]), mul(l32[h], y2[h]));
+  }
+  for (int h = 0; h < N; ++h) c3[h] = div(y3[h], d33[h]);
+  for (int h = 0; h < N; ++h) {
+    c2[h] = sub(div(y2[h], d22[h]), mul(l32[h], c3[h]));
+    c1[h] = sub(sub(one, mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
+  }
+  for (int h = 0; h < N; ++h) {
+    p[h] = div(c2[h], c3[h]);
+    q[h] = div(c1[h], c3[h]);
+  }
   // The zero-masked square root with every lane on: GCC 12's unmasked one passes an undefined
   // source that -Wuninitialized reports (the same instruction either way).
-  const __m512d r = _mm512_maskz_sqrt_pd(0xFF, sub(mul(mul(p, p), _mm512_set1_pd(0.25)), q));
-  const __m512d hp = mul(_mm512_set1_pd(-0.5), p);
-  const __m512d z2 = sub(hp, r), z3 = add(hp, r);
-  const __m512d g_mid =
-      div(add(sub(mul(z, z3), mul(b[0], add(z, z3))), b[1]), mul(sub(z3, z2), sub(z, z2)));
-  const __m512d g_far = sub(
-      one, div(add(sub(mul(z2, z3), mul(b[0], add(z2, z3))), b[1]), mul(sub(z, z2), sub(z, z3))));
-  __m512d g = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, z3, _CMP_LE_OQ), g_far, g_mid);
-  g = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, z2, _CMP_LE_OQ), g, zero);
+  for (int h = 0; h < N; ++h)
+    r[h] = _mm512_maskz_sqrt_pd(0xFF, sub(mul(mul(p[h], p[h]), _mm512_set1_pd(0.25)), q[h]));
+  for (int h = 0; h < N; ++h) {
+    const __m512d hp = mul(_mm512_set1_pd(-0.5), p[h]);
+    z2[h] = sub(hp, r[h]);
+    z3[h] = add(hp, r[h]);
+  }
+  for (int h = 0; h < N; ++h) {
+    const __m512d zh = z[h], bh0 = b[h][0], bh1 = b[h][1];
+    const __m512d g_mid = div(add(sub(mul(zh, z3[h]), mul(bh0, add(zh, z3[h]))), bh1),
+                              mul(sub(z3[h], z2[h]), sub(zh, z2[h])));
+    const __m512d g_far =
+        sub(one, div(add(sub(mul(z2[h], z3[h]), mul(bh0, add(z2[h], z3[h]))), bh1),
+                     mul(sub(zh, z2[h]), sub(zh, z3[h]))));
+    g[h] = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(zh, z3[h], _CMP_LE_OQ), g_far, g_mid);
+    g[h] = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(zh, z2[h], _CMP_LE_OQ), g[h], zero);
+  }
   if (hausdorff) {
-    const __mmask8 out = __mmask8(_mm512_cmp_pd_mask(z2, zero, _CMP_LT_OQ) |
-                                  _mm512_cmp_pd_mask(z3, one, _CMP_GT_OQ));
-    if (out != 0) {
-      const __m512d zp1 = add(z, one);
-      const __m512d u = div(add(sub(b[3], mul(zp1, b[2])), mul(z, b[1])),
-                            add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])));
-      const __m512d zu = mul(z, u);
-      const __m512d w0 =
-          div(sub(add(sub(b[2], mul(add(zp1, u), b[1])), mul(add(add(z, u), zu), b[0])), zu),
-              _mm512_xor_pd(zu, _mm512_set1_pd(-0.0)));
-      const __m512d wu = div(add(sub(b[2], mul(zp1, b[1])), mul(z, b[0])),
-                             mul(mul(u, sub(u, one)), sub(u, z)));
+    for (int h = 0; h < N; ++h) {
+      const __mmask8 outside = __mmask8(_mm512_cmp_pd_mask(z2[h], zero, _CMP_LT_OQ) |
+                                        _mm512_cmp_pd_mask(z3[h], one, _CMP_GT_OQ));
+      if (outside == 0) continue;
+      const __m512d zh = z[h];
+      const __m512d* bh = b[h];
+      const __m512d zp1 = add(zh, one);
+      const __m512d u = div(add(sub(bh[3], mul(zp1, bh[2])), mul(zh, bh[1])),
+                            add(sub(bh[2], mul(zp1, bh[1])), mul(zh, bh[0])));
+      const __m512d zu = mul(zh, u);
+      const __m512d w0 = div(
+          sub(add(sub(bh[2], mul(add(zp1, u), bh[1])), mul(add(add(zh, u), zu), bh[0])), zu),
+          _mm512_xor_pd(zu, _mm512_set1_pd(-0.0)));
+      const __m512d wu = div(add(sub(bh[2], mul(zp1, bh[1])), mul(zh, bh[0])),
+                             mul(mul(u, sub(u, one)), sub(u, zh)));
       const __m512d g4 =
-          _mm512_mask_blend_pd(_mm512_cmp_pd_mask(u, z, _CMP_LT_OQ), w0, add(w0, wu));
-      g = _mm512_mask_blend_pd(out, g, g4);
+          _mm512_mask_blend_pd(_mm512_cmp_pd_mask(u, zh, _CMP_LT_OQ), w0, add(w0, wu));
+      g[h] = _mm512_mask_blend_pd(outside, g[h], g4);
     }
   }
   // g > 0 ? (g < 1 ? g : 1) : 0, NaN -> 0.
-  const __mmask8 positive = _mm512_cmp_pd_mask(g, zero, _CMP_GT_OQ);
-  g = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(g, one, _CMP_LT_OQ), one, g);
-  return _mm512_mask_blend_pd(positive, zero, g);
+  for (int h = 0; h < N; ++h) {
+    const __mmask8 positive = _mm512_cmp_pd_mask(g[h], zero, _CMP_GT_OQ);
+    const __m512d c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(g[h], one, _CMP_LT_OQ), one, g[h]);
+    out[h] = _mm512_mask_blend_pd(positive, zero, c);
+  }
+}
+
+// One group of 8 lanes.
+SL_MSM_AVX512 inline __m512d msm_intensity8(const __m512d m[4], __m512d z, double alpha,
+                                            bool hausdorff) {
+  const __m512d group[1][4] = {{m[0], m[1], m[2], m[3]}};
+  __m512d g;
+  msm_intensity8n<1>(group, &z, alpha, hausdorff, &g);
+  return g;
 }
 #undef SL_MSM_AVX512
 #undef SL_MSM_AVX2

@@ -110,37 +110,40 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
 
 #if defined(__x86_64__)
 #define SL_AVX2 __attribute__((target("avx2")))
-// msm_value for the 8 lanes of a batch, in two halves of 4 doubles: its operations in its order.
+// msm_value for the 8 lanes of a batch, in two halves of 4 doubles: its operations in its
+// order, the halves' reconstructions side by side (msm_intensity4n<2>).
 SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const float* fx,
                             const float* fy, const float* depth, float* out) {
+  const __m256d one = _mm256_set1_pd(1.0);
+  __m256d m[2][4], z[2], g[2];
   for (int half = 0; half < 2; ++half) {
-    const __m256d one = _mm256_set1_pd(1.0);
     const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
     const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
     __m256d w[4];
     bilinear_weights4(vx, vy, w);
-    __m256d m[4];
+    __m256d* mh = m[half];
     for (int j = 0; j < 4; ++j) {
-      m[j] = _mm256_setzero_pd();
+      mh[j] = _mm256_setzero_pd();
       for (int i = 0; i < 4; ++i)
-        m[j] = _mm256_add_pd(
-            m[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[j][i] + 4 * half))));
+        mh[j] = _mm256_add_pd(
+            mh[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[j][i] + 4 * half))));
     }
     if (k.quantize16) {
       // msm_decode16's operations, lane by lane.
-      const __m256d q[4] = {_mm256_sub_pd(m[0], _mm256_set1_pd(kMsmOffset)), m[1], m[2],
-                            m[3]};
+      const __m256d q[4] = {_mm256_sub_pd(mh[0], _mm256_set1_pd(kMsmOffset)), mh[1], mh[2],
+                            mh[3]};
       for (int j = 0; j < 4; ++j) {
         __m256d s = _mm256_mul_pd(q[0], _mm256_set1_pd(kMsmInverse[0][j]));
         for (int i = 1; i < 4; ++i)
           s = _mm256_add_pd(s, _mm256_mul_pd(q[i], _mm256_set1_pd(kMsmInverse[i][j])));
-        m[j] = s;
+        mh[j] = s;
       }
     }
-    const __m256d z = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
-    const __m256d g = msm_intensity4(m, z, k.alpha, k.hausdorff);
-    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(_mm256_sub_pd(one, g)));
+    z[half] = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
   }
+  msm_intensity4n<2>(m, z, k.alpha, k.hausdorff, g);
+  for (int half = 0; half < 2; ++half)
+    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(_mm256_sub_pd(one, g[half])));
 }
 #undef SL_AVX2
 
@@ -150,41 +153,55 @@ __attribute__((target("avx512f"))) inline __m512d widen8(const float* p) {
   return _mm512_maskz_cvtps_pd(0xFF, _mm256_loadu_ps(p));
 }
 
-// msm_batch_avx2's operations on all 8 lanes at once (msm_intensity8).
+// msm_batch_avx2's operations on N batches of 8 lanes at once (msm_intensity8n: N > 1 overlaps
+// the batches' chains of divisions).
+template <int N>
 __attribute__((target("avx512f,avx512dq"))) void msm_batch_avx512(
-    const MsmConsts& k, const float (*v)[4][8], const float* fx, const float* fy,
-    const float* depth, float* out) {
+    const MsmConsts& k, const float (*const* v)[4][8], const float* const* fx,
+    const float* const* fy, const float* const* depth, float* const* out) {
   const __m512d one = _mm512_set1_pd(1.0);
-  __m512d w[4];
-  bilinear_weights8(widen8(fx), widen8(fy), w);
-  __m512d m[4];
-  for (int j = 0; j < 4; ++j) {
-    m[j] = _mm512_setzero_pd();
-    for (int i = 0; i < 4; ++i) m[j] = _mm512_add_pd(m[j], _mm512_mul_pd(w[i], widen8(v[j][i])));
-  }
-  if (k.quantize16) {
-    const __m512d q[4] = {_mm512_sub_pd(m[0], _mm512_set1_pd(kMsmOffset)), m[1], m[2], m[3]};
+  __m512d m[N][4], z[N], g[N];
+  for (int h = 0; h < N; ++h) {
+    __m512d w[4];
+    bilinear_weights8(widen8(fx[h]), widen8(fy[h]), w);
     for (int j = 0; j < 4; ++j) {
-      __m512d s = _mm512_mul_pd(q[0], _mm512_set1_pd(kMsmInverse[0][j]));
-      for (int i = 1; i < 4; ++i)
-        s = _mm512_add_pd(s, _mm512_mul_pd(q[i], _mm512_set1_pd(kMsmInverse[i][j])));
-      m[j] = s;
+      m[h][j] = _mm512_setzero_pd();
+      for (int i = 0; i < 4; ++i)
+        m[h][j] = _mm512_add_pd(m[h][j], _mm512_mul_pd(w[i], widen8(v[h][j][i])));
     }
+    if (k.quantize16) {
+      const __m512d q[4] = {_mm512_sub_pd(m[h][0], _mm512_set1_pd(kMsmOffset)), m[h][1], m[h][2],
+                            m[h][3]};
+      for (int j = 0; j < 4; ++j) {
+        __m512d s = _mm512_mul_pd(q[0], _mm512_set1_pd(kMsmInverse[0][j]));
+        for (int i = 1; i < 4; ++i)
+          s = _mm512_add_pd(s, _mm512_mul_pd(q[i], _mm512_set1_pd(kMsmInverse[i][j])));
+        m[h][j] = s;
+      }
+    }
+    z[h] = widen8(depth[h]);
   }
-  const __m512d g = msm_intensity8(m, widen8(depth), k.alpha, k.hausdorff);
-  _mm256_storeu_ps(out, _mm512_maskz_cvtpd_ps(0xFF, _mm512_sub_pd(one, g)));
+  msm_intensity8n<N>(m, z, k.alpha, k.hausdorff, g);
+  for (int h = 0; h < N; ++h)
+    _mm256_storeu_ps(out[h], _mm512_maskz_cvtpd_ps(0xFF, _mm512_sub_pd(one, g[h])));
 }
 #endif
 
 // 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
-// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist.
+// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist. With AVX-512
+// the lookup loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a
+// serial chain of 7 divisions and a square root per batch, and 4 independent chains side by
+// side took the room100k lookup from 7.0-7.4 to 5.1-5.9 ms where 2 took it to 5.4-6.3 and 8
+// gained nothing (AMD EPYC, alternating rounds of technique_bench).
 struct MsmBatch {
   static constexpr bool kEnabled = true;
+  static constexpr int kGroups = 4;
   MsmConsts k;
   Bilinear8x2Fn bilinear8x4;
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
   bool avx512;  // the reconstruction in 8 lanes (use_avx512_paths) or in two halves of 4
+  bool grouped() const { return avx512; }
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
     if (prefetch8) prefetch8(c, r, moments, 4);
   }
@@ -192,10 +209,31 @@ struct MsmBatch {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     bilinear8x4(c, r, moments, v, fx, fy);
 #if defined(__x86_64__)
+    const float(*vp)[4][8] = v;
+    const float *fxp = fx, *fyp = fy, *dp = r.depth;
     if (avx512)
-      msm_batch_avx512(k, v, fx, fy, r.depth, out);
+      msm_batch_avx512<1>(k, &vp, &fxp, &fyp, &dp, &out);
     else
       msm_batch_avx2(k, v, fx, fy, r.depth, out);
+#endif
+  }
+  // kGroups batches at once (only when grouped()).
+  void groups(const MapLookupConsts& c, const Receivers8* r, float (*out)[8]) const {
+#if defined(__x86_64__)
+    constexpr int G = kGroups;
+    alignas(32) float v[G][4][4][8], fx[G][8], fy[G][8];
+    const float(*vp[G])[4][8];
+    const float *fxp[G], *fyp[G], *dp[G];
+    float* op[G];
+    for (int h = 0; h < G; ++h) {
+      bilinear8x4(c, r[h], moments, v[h], fx[h], fy[h]);
+      vp[h] = v[h];
+      fxp[h] = fx[h];
+      fyp[h] = fy[h];
+      dp[h] = r[h].depth;
+      op[h] = out[h];
+    }
+    msm_batch_avx512<G>(k, vp, fxp, fyp, dp, op);
 #endif
   }
 };

@@ -102,6 +102,9 @@ TEST(Mains, CommandLineErrorsNameTheFlag) {
   expect_clear_error(base + " stray", "stray: unexpected argument");
   expect_clear_error(base + " --fov 0x10", "--fov: expected a number, got '0x10'");
   expect_clear_error("technique_bench --repeats 2", "--repeats: 2 is outside [3, 100000]");
+  // Found by use: a spec's own res was overridden by --res without a word.
+  expect_clear_error("technique_bench --techniques csm,cmsm:res=256",
+                     "--techniques: 'cmsm:res=256': give the resolution with --res");
   // Found by review: a flag taken as the previous flag's value, values on switches (also the
   // ones run_main answers), single-dash words, a leftover "--", coordinates beyond float.
   expect_clear_error("render --technique csm --out --no-alpha", "--out: expects a value, got the flag '--no-alpha'");

@@ -209,18 +209,41 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
 
 #if defined(__x86_64__)
 // The kernels on lanes m[k][lane] (moment k + 1), z[lane].
-__attribute__((target("avx2"))) void intensity4(const double (*m)[8], const double* z,
+__attribute__((target("avx2"))) void intensity4(const double (*m)[32], const double* z,
                                                 double alpha, bool hausdorff, double* out) {
   __m256d mv[4];
   for (int k = 0; k < 4; ++k) mv[k] = _mm256_loadu_pd(m[k]);
   _mm256_storeu_pd(out, msm_intensity4(mv, _mm256_loadu_pd(z), alpha, hausdorff));
 }
-__attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[8],
+// Two groups of 4 side by side (msm_intensity4n<2>, the AVX2 batch's halves).
+__attribute__((target("avx2"))) void intensity4x2(const double (*m)[32], const double* z,
+                                                  double alpha, bool hausdorff, double* out) {
+  __m256d mv[2][4], zv[2], g[2];
+  for (int h = 0; h < 2; ++h) {
+    for (int k = 0; k < 4; ++k) mv[h][k] = _mm256_loadu_pd(m[k] + 4 * h);
+    zv[h] = _mm256_loadu_pd(z + 4 * h);
+  }
+  msm_intensity4n<2>(mv, zv, alpha, hausdorff, g);
+  for (int h = 0; h < 2; ++h) _mm256_storeu_pd(out + 4 * h, g[h]);
+}
+__attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[32],
                                                             const double* z, double alpha,
                                                             bool hausdorff, double* out) {
   __m512d mv[4];
   for (int k = 0; k < 4; ++k) mv[k] = _mm512_loadu_pd(m[k]);
   _mm512_storeu_pd(out, msm_intensity8(mv, _mm512_loadu_pd(z), alpha, hausdorff));
+}
+// Four groups of 8 side by side (msm_intensity8n<4>, the MSM lookup's groups of batches).
+__attribute__((target("avx512f,avx512dq"))) void intensity8x4(const double (*m)[32],
+                                                              const double* z, double alpha,
+                                                              bool hausdorff, double* out) {
+  __m512d mv[4][4], zv[4], g[4];
+  for (int h = 0; h < 4; ++h) {
+    for (int k = 0; k < 4; ++k) mv[h][k] = _mm512_loadu_pd(m[k] + 8 * h);
+    zv[h] = _mm512_loadu_pd(z + 8 * h);
+  }
+  msm_intensity8n<4>(mv, zv, alpha, hausdorff, g);
+  for (int h = 0; h < 4; ++h) _mm512_storeu_pd(out + 8 * h, g[h]);
 }
 
 // A `lanes`-wide form against the scalar bits: random distributions, α = 0 (singular and NaN
@@ -231,7 +254,7 @@ void expect_scalar_bits(int lanes, const Kernel& kernel) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    double m[4][8], z[8];
+    double m[4][32], z[32];
     for (int lane = 0; lane < lanes; ++lane) {
       const int n = (trial + lane) % 5 + 1;  // 1 atom: a singular matrix
       double mm[4];
@@ -241,7 +264,7 @@ void expect_scalar_bits(int lanes, const Kernel& kernel) {
     }
     for (const double alpha : {0.0, 3e-6, 1e-2})
       for (const bool hausdorff : {false, true}) {
-        double got[8];
+        double got[32];
         kernel(m, z, alpha, hausdorff, got);
         for (int lane = 0; lane < lanes; ++lane) {
           const double mm[4] = {m[0][lane], m[1][lane], m[2][lane], m[3][lane]};
@@ -258,11 +281,17 @@ void expect_scalar_bits(int lanes, const Kernel& kernel) {
 TEST(MomentBound, AvxLanesGiveTheScalarBits) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   expect_scalar_bits(4, intensity4);
+  expect_scalar_bits(8, intensity4x2);
 }
 
 TEST(MomentBound, Avx512LanesGiveTheScalarBits) {
   if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
   expect_scalar_bits(8, intensity8);
+}
+
+TEST(MomentBound, Avx512GroupsOfLanesGiveTheScalarBits) {
+  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  expect_scalar_bits(32, intensity8x4);
 }
 #endif
 
