@@ -34,6 +34,42 @@ void depth_block8_scalar(const DepthBlock8& b, float* z, size_t stride) {
   }
 }
 
+namespace {
+// Block j's skip and whole-coverage tests, and its DepthBlock8 (edge values at its origin).
+bool row_block(const DepthRow8& r, const int64_t* e, bool& inside) {
+  if (e[0] + r.hi_off[0] < 0 || e[1] + r.hi_off[1] < 0 || e[2] + r.hi_off[2] < 0) return false;
+  inside = e[0] + r.lo_off[0] >= 0 && e[1] + r.lo_off[1] >= 0 && e[2] + r.lo_off[2] >= 0;
+  return true;
+}
+}  // namespace
+
+void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride) {
+  DepthBlock8 b;
+  for (int k = 0; k < 3; ++k) {
+    b.step_x[k] = r.step_x[k];
+    b.step_y[k] = r.step_y[k];
+    for (int i = 0; i < 8; ++i) b.lane_x[k][i] = r.step_x[k] * i;
+  }
+  b.z0 = r.z0;
+  b.z_dx = r.z_dx;
+  b.z_dy = r.z_dy;
+  b.z_lo = r.z_lo;
+  b.z_hi = r.z_hi;
+  b.oy = r.oy;
+  b.rows = r.rows;
+  b.id = r.id;
+  int64_t e[3] = {r.edge[0], r.edge[1], r.edge[2]};
+  for (int j = 0; j < r.blocks; ++j) {
+    if (row_block(r, e, b.inside)) {
+      for (int k = 0; k < 3; ++k) b.edge[k] = e[k];
+      b.ox = r.ox + 8 * j;
+      b.ids = r.ids ? r.ids + 8 * size_t(j) : nullptr;
+      depth_block8_scalar(b, z + 8 * size_t(j), stride);
+    }
+    for (int k = 0; k < 3; ++k) e[k] += r.block_step[k];
+  }
+}
+
 #ifdef SHADOWLAB_HAVE_X86
 __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBlock8& b, float* z,
                                                                    size_t stride) {
@@ -127,7 +163,150 @@ __attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_block8_av
   }
 }
 
+
+// The row of blocks in one call: the per-block body of depth_block8_avx512_impl, its lane
+// offsets step_x · i made once per row (vpmullq: the same exact int64 products as lane_x).
+__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_row8_avx512_impl(
+    const DepthRow8& rw, float* z, size_t stride) {
+  const __m512i iota = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+  __m512i lane[3], dy[3];
+  int64_t e[3], bstep[3], lo_off[3], hi_off[3];
+  for (int k = 0; k < 3; ++k) {
+    lane[k] = _mm512_mullo_epi64(_mm512_set1_epi64(rw.step_x[k]), iota);
+    dy[k] = _mm512_set1_epi64(rw.step_y[k]);
+    e[k] = rw.edge[k];
+    bstep[k] = rw.block_step[k];
+    lo_off[k] = rw.lo_off[k];
+    hi_off[k] = rw.hi_off[k];
+  }
+  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256 z_dx = _mm256_set1_ps(rw.z_dx);
+  const float z0 = rw.z0, z_dy = rw.z_dy;
+  const __m256 z_lo = _mm256_set1_ps(rw.z_lo), z_hi = _mm256_set1_ps(rw.z_hi);
+  const __m256i id = _mm256_set1_epi32(int(rw.id));
+  uint32_t* const ids = rw.ids;
+  const int rows = rw.rows, oy = rw.oy, blocks = rw.blocks, ox0 = rw.ox;
+  const __m512i zero = _mm512_setzero_si512();
+  for (int j = 0; j < blocks; ++j, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
+    if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
+    const bool inside = e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
+    __m512i ev[3];
+    for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(_mm512_set1_epi64(e[k]), lane[k]);
+    const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(ox0 + 8 * j), lane_i));
+    const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
+    float* const zb = z + 8 * size_t(j);
+    uint32_t* const idb = ids ? ids + 8 * size_t(j) : nullptr;
+    for (int r = 0; r < rows; ++r) {
+      __mmask8 covered = 0xFF;
+      if (!inside) {
+        const __m512i any = _mm512_or_si512(_mm512_or_si512(ev[0], ev[1]), ev[2]);
+        covered = _mm512_cmpge_epi64_mask(any, zero);
+        for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
+      }
+      if (covered) {
+        const float zy = z0 + z_dy * float(oy + r);
+        const __m256 iw =
+            _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+        float* row = zb + size_t(r) * stride;
+        const __mmask8 nearer =
+            _mm256_mask_cmp_ps_mask(covered, iw, _mm256_loadu_ps(row), _CMP_GT_OQ);
+        _mm256_mask_storeu_ps(row, nearer, iw);
+        if (idb) _mm256_mask_storeu_epi32(idb + size_t(r) * stride, nearer, id);
+      }
+    }
+  }
+}
+
+// The AVX2 row: the per-block body of depth_block8_avx2_impl, its lane offsets step_x · i made
+// once per row (exact int64 sums: the same values as lane_x).
+__attribute__((target("avx2"))) static void depth_row8_avx2_impl(const DepthRow8& rw, float* z,
+                                                                 size_t stride) {
+  __m256i lane_lo[3], lane_hi[3], dy[3];
+  int64_t e[3], bstep[3], lo_off[3], hi_off[3];
+  for (int k = 0; k < 3; ++k) {
+    const int64_t s1 = rw.step_x[k], s2 = s1 + s1, s3 = s2 + s1, s4 = s2 + s2;
+    lane_lo[k] = _mm256_setr_epi64x(0, s1, s2, s3);
+    lane_hi[k] = _mm256_add_epi64(lane_lo[k], _mm256_set1_epi64x(s4));
+    dy[k] = _mm256_set1_epi64x(rw.step_y[k]);
+    e[k] = rw.edge[k];
+    bstep[k] = rw.block_step[k];
+    lo_off[k] = rw.lo_off[k];
+    hi_off[k] = rw.hi_off[k];
+  }
+  const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256 z_dx = _mm256_set1_ps(rw.z_dx);
+  const float z0 = rw.z0, z_dy = rw.z_dy;
+  const __m256 z_lo = _mm256_set1_ps(rw.z_lo), z_hi = _mm256_set1_ps(rw.z_hi);
+  const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(rw.id)));
+  uint32_t* const ids = rw.ids;
+  const int rows = rw.rows, oy = rw.oy, blocks = rw.blocks, ox0 = rw.ox;
+  for (int j = 0; j < blocks; ++j, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
+    if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
+    const bool inside = e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
+    __m256i lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const __m256i ek = _mm256_set1_epi64x(e[k]);
+      lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
+      hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
+    }
+    const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(ox0 + 8 * j), lane_i));
+    const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
+    float* const zb = z + 8 * size_t(j);
+    uint32_t* const idb = ids ? ids + 8 * size_t(j) : nullptr;
+    for (int r = 0; r < rows; ++r) {
+      int out_bits = 0;
+      if (!inside) {
+        const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
+        const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
+        out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
+                   (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = _mm256_add_epi64(lo[k], dy[k]);
+          hi[k] = _mm256_add_epi64(hi[k], dy[k]);
+        }
+      }
+      if (out_bits == 0xFF) continue;
+      const __m256i covered = _mm256_cmpeq_epi32(
+          _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
+      const float zy = z0 + z_dy * float(oy + r);
+      const __m256 iw =
+          _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+      float* row = zb + size_t(r) * stride;
+      const __m256 old = _mm256_loadu_ps(row);
+      const __m256 nearer =
+          _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), _mm256_castsi256_ps(covered));
+      _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
+      if (idb) {
+        float* idr = reinterpret_cast<float*>(idb + size_t(r) * stride);
+        _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
+      }
+    }
+  }
+}
+
 #endif
+
+DepthRow8Fn depth_row8_avx512() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (cpu_has_avx512()) return depth_row8_avx512_impl;
+#endif
+  return nullptr;
+}
+
+DepthRow8Fn depth_row8_avx2() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (cpu_has_avx2()) return depth_row8_avx2_impl;
+#endif
+  return nullptr;
+}
+
+DepthRow8Fn depth_row8_selected() {
+  const DepthBlock8Fn block = depth_block8_selected();
+  if (block == depth_block8_scalar) return depth_row8_scalar;
+  if (block == depth_block8_avx2()) return depth_row8_avx2();
+  return depth_row8_avx512();
+}
 
 DepthBlock8Fn depth_block8_avx512() {
 #ifdef SHADOWLAB_HAVE_X86

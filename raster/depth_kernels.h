@@ -42,4 +42,35 @@ inline void depth_block8(const DepthBlock8& b, float* z, size_t stride) {
   fn(b, z, stride);
 }
 
+// A row of `blocks` blocks side by side, each `rows` rows × 8 pixels, in one call (the walk over
+// a triangle's blocks in a tile row, kept in the kernel's registers): block j starts at pixel
+// 8·j of the row, with edge values edge[k] + j · block_step[k] there; it is skipped when
+// edge + hi_off < 0 for some edge (no pixel centre of it covered) and taken as wholly covered
+// when edge + lo_off >= 0 for every edge, as DepthBlock8::inside. Block j is depth_block8 of
+// that block, bit for bit.
+struct DepthRow8 {
+  int64_t edge[3], step_x[3], step_y[3];
+  int64_t block_step[3], lo_off[3], hi_off[3];
+  float z0, z_dx, z_dy;  // the triangle's plane (see TriangleSetup)
+  float z_lo, z_hi;
+  int ox, oy;            // first block's origin minus the triangle's (min_x, min_y)
+  int rows;              // 1..8
+  int blocks;            // >= 0
+  uint32_t id = 0;
+  uint32_t* ids = nullptr;  // first block's ids, when not null
+};
+using DepthRow8Fn = void (*)(const DepthRow8& r, float* z, size_t stride);
+
+// Scalar reference: each block through depth_block8_scalar.
+void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride);
+DepthRow8Fn depth_row8_avx2();
+DepthRow8Fn depth_row8_avx512();
+// The variant of the same ISA as depth_block8_selected().
+DepthRow8Fn depth_row8_selected();
+
+inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
+  static const DepthRow8Fn fn = depth_row8_selected();
+  fn(r, z, stride);
+}
+
 }  // namespace shadowlab
