@@ -33,6 +33,30 @@ struct PixelRays {
   }
 };
 
+// Lane k of the mixed-triangle SIMD resolve: the triangle's terms, its vertex normals and uvs
+// (zero, and flagged absent, where the mesh has none or the lane shows no triangle).
+void fill_lane(ResolveLanes8& l, int k, const Mesh* mesh, const uint32_t* idx, const vec3& e1,
+               const vec3& e2, const vec3& s, const vec3& q, const vec3& gn, float e2q) {
+  for (int c = 0; c < 3; ++c) {
+    l.e1[c][k] = e1[c];
+    l.e2[c][k] = e2[c];
+    l.s[c][k] = s[c];
+    l.q[c][k] = q[c];
+    l.gn[c][k] = gn[c];
+  }
+  l.e2q[k] = e2q;
+  const bool has_n = mesh && !mesh->normals.empty(), has_uv = mesh && !mesh->uvs.empty();
+  l.has_n[k] = has_n ? -1 : 0;
+  l.has_uv[k] = has_uv ? -1 : 0;
+  for (int v = 0; v < 3; ++v) {
+    const vec3 n = has_n ? mesh->normals[idx[v]] : vec3(0.0f);
+    const vec2 uv = has_uv ? mesh->uvs[idx[v]] : vec2(0.0f);
+    for (int c = 0; c < 3; ++c) l.n[v][c][k] = n[c];
+    l.uv[v][0][k] = uv.x;
+    l.uv[v][1][k] = uv.y;
+  }
+}
+
 }  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, RasterStats* stats) {
@@ -65,6 +89,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   const std::vector<uint32_t> first = scene_first_triangles(scene);
   const PixelRays rays(cam);
   const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
+  const ResolveLanes8Fn lanes8 = allow_simd ? resolve_lanes8_simd() : nullptr;
   // Chunks of one block row each: a chunk also leaves the position bounds of its blocks
   // (GBuffer::block_bounds), from the positions while they are in registers.
   g.block_bounds.assign(size_t(g.blocks_x()) * size_t(g.blocks_y()), BlockBounds{});
@@ -82,23 +107,87 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     // The chunk is one block row: its bounds are accumulated row by row below.
     BlockRowBounds bounds;
     bounds.reset(g.blocks_x());
+    // Neighbouring pixels mostly see the same triangle: its per-triangle terms are kept.
+    auto load_triangle = [&](uint32_t t) {
+      if (t == tri.t) return;
+      if (t < first[m] || t >= first[m + 1])
+        m = uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin()) - 1;
+      tri.t = t;
+      tri.m = m;
+      tri.mesh = &scene.meshes[m];
+      tri.p = t - first[m];
+      tri.idx = &tri.mesh->indices[3 * size_t(tri.p)];
+      const vec3& p0 = tri.mesh->positions[tri.idx[0]];
+      tri.e1 = tri.mesh->positions[tri.idx[1]] - p0;
+      tri.e2 = tri.mesh->positions[tri.idx[2]] - p0;
+      tri.s = rays.eye - p0;
+      tri.q = glm::cross(tri.s, tri.e1);
+      tri.e2q = glm::dot(tri.e2, tri.q);
+      const vec3 n = glm::cross(tri.e1, tri.e2);
+      const float nl = glm::length(n);
+      tri.gn = nl > 0.0f ? n / nl : vec3(0.0f, 1.0f, 0.0f);
+    };
+    // The camera's part of the SIMD paths' terms (ResolveRun8), the same for every pixel.
+    run.eye = rays.eye;
+    run.forward = rays.forward;
+    run.right = rays.right;
+    run.up = rays.up;
+    run.sx = rays.sx;
+    run.sy = rays.sy;
+    run.width = rays.width;
+    run.height = rays.height;
+    auto empty_pixel = [&](size_t i) {
+      g.position[i] = vec3(0.0f);
+      g.normal[i] = g.geo_normal[i] = vec3(0.0f);
+      g.uv[i] = vec2(0.0f);
+      g.depth[i] = std::numeric_limits<float>::infinity();
+      g.mesh_id[i] = g.prim_id[i] = kNoPrimitive;
+      g.covered[i] = 0;
+    };
+    alignas(32) ResolveLanes8 lanes;
     for (size_t y = y0; y < y1; ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = y * size_t(w) + size_t(x);
         const uint32_t t = vis.ids[i];
+        if (lanes8 && x + 8 <= w) {
+          int covered = 0;
+          for (int k = 0; k < 8; ++k) covered += vis.ids[i + size_t(k)] != kNoPrimitive;
+          if (covered == 0) {
+            for (int k = 0; k < 8; ++k) empty_pixel(i + size_t(k));
+            x += 7;
+            continue;
+          }
+          if (covered < 8 || !std::all_of(&vis.ids[i + 1], &vis.ids[i + 8],
+                                          [t](uint32_t o) { return o == t; })) {
+            // Eight pixels not all on one triangle: each lane its own triangle's terms, the
+            // AVX2 path for all 8 (same bits as the code below), then the empty lanes' values.
+            for (int k = 0; k < 8; ++k) {
+              const uint32_t tk = vis.ids[i + size_t(k)];
+              if (tk == kNoPrimitive) {
+                fill_lane(lanes, k, nullptr, nullptr, tri.e1, tri.e2, tri.s, tri.q, tri.gn, 0.0f);
+                continue;
+              }
+              load_triangle(tk);
+              fill_lane(lanes, k, tri.mesh, tri.idx, tri.e1, tri.e2, tri.s, tri.q, tri.gn,
+                        tri.e2q);
+              g.mesh_id[i + size_t(k)] = tri.m;
+              g.prim_id[i + size_t(k)] = tri.p;
+              g.covered[i + size_t(k)] = 1;
+            }
+            lanes8(run, lanes, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],
+                   &g.geo_normal[i], &g.uv[i], &g.depth[i]);
+            for (int k = 0; k < 8; ++k)
+              if (vis.ids[i + size_t(k)] == kNoPrimitive) empty_pixel(i + size_t(k));
+            x += 7;
+            continue;
+          }
+          load_triangle(t);  // eight pixels on one triangle: the run below
+        }
         if (simd && t != kNoPrimitive && x + 8 <= w && t == tri.t &&
             std::all_of(&vis.ids[i + 1], &vis.ids[i + 8], [t](uint32_t o) { return o == t; })) {
           // Eight pixels on the cached triangle: the AVX2 path, same bits as the code below.
           if (run_t != t) {
             run_t = t;
-            run.eye = rays.eye;
-            run.forward = rays.forward;
-            run.right = rays.right;
-            run.up = rays.up;
-            run.sx = rays.sx;
-            run.sy = rays.sy;
-            run.width = rays.width;
-            run.height = rays.height;
             run.e1 = tri.e1;
             run.e2 = tri.e2;
             run.s = tri.s;
@@ -121,33 +210,10 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           continue;
         }
         if (t == kNoPrimitive) {
-          g.position[i] = vec3(0.0f);
-          g.normal[i] = g.geo_normal[i] = vec3(0.0f);
-          g.uv[i] = vec2(0.0f);
-          g.depth[i] = std::numeric_limits<float>::infinity();
-          g.mesh_id[i] = g.prim_id[i] = kNoPrimitive;
-          g.covered[i] = 0;
+          empty_pixel(i);
           continue;
         }
-        // Neighbouring pixels mostly see the same triangle: its per-triangle terms are kept.
-        if (t != tri.t) {
-          if (t < first[m] || t >= first[m + 1])
-            m = uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin()) - 1;
-          tri.t = t;
-          tri.m = m;
-          tri.mesh = &scene.meshes[m];
-          tri.p = t - first[m];
-          tri.idx = &tri.mesh->indices[3 * size_t(tri.p)];
-          const vec3& p0 = tri.mesh->positions[tri.idx[0]];
-          tri.e1 = tri.mesh->positions[tri.idx[1]] - p0;
-          tri.e2 = tri.mesh->positions[tri.idx[2]] - p0;
-          tri.s = rays.eye - p0;
-          tri.q = glm::cross(tri.s, tri.e1);
-          tri.e2q = glm::dot(tri.e2, tri.q);
-          const vec3 n = glm::cross(tri.e1, tri.e2);
-          const float nl = glm::length(n);
-          tri.gn = nl > 0.0f ? n / nl : vec3(0.0f, 1.0f, 0.0f);
-        }
+        load_triangle(t);
         const Mesh& mesh = *tri.mesh;
         const uint32_t p = tri.p;
         const uint32_t* idx = tri.idx;

@@ -48,9 +48,61 @@ SL_AVX2 inline void store3(vec3* out, const V3& v) {
   for (int i = 0; i < 8; ++i) out[i] = vec3(t[0][i], t[1][i], t[2][i]);
 }
 
-SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* inv_w,
-                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
-                               float* depth_out) {
+SL_AVX2 inline V3 load3(const float (*v)[8]) {
+  return {_mm256_load_ps(v[0]), _mm256_load_ps(v[1]), _mm256_load_ps(v[2])};
+}
+
+// The triangle terms of one triangle for all 8 lanes (broadcasts).
+struct SameTriangle {
+  const ResolveRun8& r;
+  SL_AVX2 V3 e1() const { return bc3(r.e1); }
+  SL_AVX2 V3 e2() const { return bc3(r.e2); }
+  SL_AVX2 V3 s() const { return bc3(r.s); }
+  SL_AVX2 V3 q() const { return bc3(r.q); }
+  SL_AVX2 V3 gn() const { return bc3(r.gn); }
+  SL_AVX2 __m256 e2q() const { return bc(r.e2q); }
+  bool any_n() const { return r.n[0] != nullptr; }
+  bool any_uv() const { return r.uv[0] != nullptr; }
+  SL_AVX2 __m256 has_n() const { return _mm256_castsi256_ps(_mm256_set1_epi32(-1)); }
+  SL_AVX2 __m256 has_uv() const { return _mm256_castsi256_ps(_mm256_set1_epi32(-1)); }
+  SL_AVX2 __m256 n(int k, int c) const { return bc((&r.n[k]->x)[c]); }
+  SL_AVX2 __m256 uv(int k, int c) const { return bc((&r.uv[k]->x)[c]); }
+};
+
+// Each lane's own triangle (loads).
+struct LaneTriangles {
+  const ResolveLanes8& l;
+  SL_AVX2 V3 e1() const { return load3(l.e1); }
+  SL_AVX2 V3 e2() const { return load3(l.e2); }
+  SL_AVX2 V3 s() const { return load3(l.s); }
+  SL_AVX2 V3 q() const { return load3(l.q); }
+  SL_AVX2 V3 gn() const { return load3(l.gn); }
+  SL_AVX2 __m256 e2q() const { return _mm256_load_ps(l.e2q); }
+  SL_AVX2 bool any_n() const {
+    return !_mm256_testz_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(l.has_n)),
+                               _mm256_set1_epi32(-1));
+  }
+  SL_AVX2 bool any_uv() const {
+    return !_mm256_testz_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(l.has_uv)),
+                               _mm256_set1_epi32(-1));
+  }
+  SL_AVX2 __m256 has_n() const { return _mm256_load_ps(reinterpret_cast<const float*>(l.has_n)); }
+  SL_AVX2 __m256 has_uv() const { return _mm256_load_ps(reinterpret_cast<const float*>(l.has_uv)); }
+  SL_AVX2 __m256 n(int k, int c) const { return _mm256_load_ps(l.n[k][c]); }
+  SL_AVX2 __m256 uv(int k, int c) const { return _mm256_load_ps(l.uv[k][c]); }
+};
+
+// ((l0·a + l1·b) + l2·c) with per-lane vertex values.
+SL_AVX2 inline __m256 interp_v(__m256 l0, __m256 l1, __m256 l2, __m256 a, __m256 b, __m256 c) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(l0, a), _mm256_mul_ps(l1, b)),
+                       _mm256_mul_ps(l2, c));
+}
+
+// The scalar resolve's operations for 8 pixels (gbuffer_pass.cpp), triangle terms from `t`.
+template <class Terms>
+SL_AVX2 inline void resolve8(const ResolveRun8& r, const Terms& t, int x, int y,
+                             const float* inv_w, vec3* position, vec3* normal, vec3* geo_normal,
+                             vec2* uv, float* depth_out) {
   const __m256 zero = _mm256_setzero_ps(), one = bc(1.0f), sign = bc(-0.0f);
   // Ray directions, as PixelRays::dir.
   const __m256 xs = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x),
@@ -63,15 +115,15 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
                 _mm256_add_ps(_mm256_add_ps(bc(r.forward.y), _mm256_mul_ps(nxs, bc(r.right.y))), bc(nys * r.up.y)),
                 _mm256_add_ps(_mm256_add_ps(bc(r.forward.z), _mm256_mul_ps(nxs, bc(r.right.z))), bc(nys * r.up.z))};
   // Möller–Trumbore with the triangle's constant terms.
-  const V3 pv = cross(d, bc3(r.e2));
-  const __m256 det = dot(bc3(r.e1), pv);
+  const V3 pv = cross(d, t.e2());
+  const __m256 det = dot(t.e1(), pv);
   __m256 depth = _mm256_div_ps(one, _mm256_loadu_ps(inv_w));
   __m256 l0 = bc(1.0f / 3.0f), l1 = l0, l2 = l0;
   const __m256 ok_det = _mm256_cmp_ps(_mm256_andnot_ps(sign, det), bc(1e-30f), _CMP_GT_OQ);
   const __m256 inv_det = _mm256_div_ps(one, det);
-  const __m256 u = _mm256_mul_ps(dot(bc3(r.s), pv), inv_det);
-  const __m256 v = _mm256_mul_ps(dot(d, bc3(r.q)), inv_det);
-  const __m256 tt = _mm256_mul_ps(bc(r.e2q), inv_det);
+  const __m256 u = _mm256_mul_ps(dot(t.s(), pv), inv_det);
+  const __m256 v = _mm256_mul_ps(dot(d, t.q()), inv_det);
+  const __m256 tt = _mm256_mul_ps(t.e2q(), inv_det);
   const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(sign, tt), bc(__builtin_inff()), _CMP_LT_OQ);
   const __m256 hit = _mm256_and_ps(_mm256_and_ps(ok_det, finite), _mm256_cmp_ps(tt, zero, _CMP_GT_OQ));
   l0 = select(hit, _mm256_sub_ps(_mm256_sub_ps(one, u), v), l0);
@@ -81,16 +133,17 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
   const V3 pos = {_mm256_add_ps(bc(r.eye.x), _mm256_mul_ps(depth, d.x)),
                   _mm256_add_ps(bc(r.eye.y), _mm256_mul_ps(depth, d.y)),
                   _mm256_add_ps(bc(r.eye.z), _mm256_mul_ps(depth, d.z))};
-  V3 gn = bc3(r.gn);
+  V3 gn = t.gn();
   V3 sn = gn;
-  if (r.n[0]) {
-    const V3 n = {interp(l0, l1, l2, r.n[0]->x, r.n[1]->x, r.n[2]->x),
-                  interp(l0, l1, l2, r.n[0]->y, r.n[1]->y, r.n[2]->y),
-                  interp(l0, l1, l2, r.n[0]->z, r.n[1]->z, r.n[2]->z)};
+  if (t.any_n()) {
+    const V3 n = {interp_v(l0, l1, l2, t.n(0, 0), t.n(1, 0), t.n(2, 0)),
+                  interp_v(l0, l1, l2, t.n(0, 1), t.n(1, 1), t.n(2, 1)),
+                  interp_v(l0, l1, l2, t.n(0, 2), t.n(1, 2), t.n(2, 2))};
     const __m256 nl = _mm256_sqrt_ps(dot(n, n));
-    const __m256 pos_len = _mm256_cmp_ps(nl, zero, _CMP_GT_OQ);
-    sn = {select(pos_len, _mm256_div_ps(n.x, nl), sn.x), select(pos_len, _mm256_div_ps(n.y, nl), sn.y),
-          select(pos_len, _mm256_div_ps(n.z, nl), sn.z)};
+    // Lanes whose mesh has normals and whose interpolated normal is not zero.
+    const __m256 use = _mm256_and_ps(_mm256_cmp_ps(nl, zero, _CMP_GT_OQ), t.has_n());
+    sn = {select(use, _mm256_div_ps(n.x, nl), sn.x), select(use, _mm256_div_ps(n.y, nl), sn.y),
+          select(use, _mm256_div_ps(n.z, nl), sn.z)};
   }
   // Two-sided: both normals face the eye.
   const V3 to_eye = {_mm256_sub_ps(bc(r.eye.x), pos.x), _mm256_sub_ps(bc(r.eye.y), pos.y),
@@ -103,14 +156,28 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
   store3(normal, sn);
   store3(geo_normal, gn);
   _mm256_storeu_ps(depth_out, depth);
-  if (r.uv[0]) {
+  if (t.any_uv()) {
     alignas(32) float tu[8], tv[8];
-    _mm256_store_ps(tu, interp(l0, l1, l2, r.uv[0]->x, r.uv[1]->x, r.uv[2]->x));
-    _mm256_store_ps(tv, interp(l0, l1, l2, r.uv[0]->y, r.uv[1]->y, r.uv[2]->y));
+    const __m256 has = t.has_uv();
+    _mm256_store_ps(tu, _mm256_and_ps(has, interp_v(l0, l1, l2, t.uv(0, 0), t.uv(1, 0), t.uv(2, 0))));
+    _mm256_store_ps(tv, _mm256_and_ps(has, interp_v(l0, l1, l2, t.uv(0, 1), t.uv(1, 1), t.uv(2, 1))));
     for (int i = 0; i < 8; ++i) uv[i] = vec2(tu[i], tv[i]);
   } else {
     for (int i = 0; i < 8; ++i) uv[i] = vec2(0.0f);
   }
+}
+
+SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* inv_w,
+                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
+                               float* depth_out) {
+  resolve8(r, SameTriangle{r}, x, y, inv_w, position, normal, geo_normal, uv, depth_out);
+}
+
+SL_AVX2 void resolve_lanes8_avx2(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
+                                 int y, const float* inv_w, vec3* position, vec3* normal,
+                                 vec3* geo_normal, vec2* uv, float* depth_out) {
+  resolve8(camera, LaneTriangles{lanes}, x, y, inv_w, position, normal, geo_normal, uv,
+           depth_out);
 }
 
 #undef SL_AVX2
@@ -121,6 +188,13 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
 ResolveRun8Fn resolve_run8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return resolve_run8_avx2;
+#endif
+  return nullptr;
+}
+
+ResolveLanes8Fn resolve_lanes8_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return resolve_lanes8_avx2;
 #endif
   return nullptr;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// AVX2 path of the GBuffer resolve for 8 neighbouring pixels of one row that all show the same
-// triangle (two thirds of the 8-pixel runs on room100k at 1024×768). It performs the scalar
+// AVX2 paths of the GBuffer resolve for 8 neighbouring pixels of one row: all showing the same
+// triangle (two thirds of the 8-pixel runs on room100k at 1024×768), or each its own. It performs the scalar
 // resolve's IEEE operations in the same order (gbuffer_pass.cpp is its oracle), so the GBuffer
 // is bit-identical either way; a test compares both.
 #include <cstdint>
@@ -29,5 +29,21 @@ using ResolveRun8Fn = void (*)(const ResolveRun8& r, int x, int y, const float* 
 
 // The AVX2 path, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 ResolveRun8Fn resolve_run8_simd();
+
+// 8 neighbouring pixels of one row that show different triangles: each lane its own
+// triangle's terms (ResolveRun8's, structure of arrays: [component][lane]); lanes whose mesh
+// has no normals (uvs) get the geometric normal (uv 0) as the scalar resolve does. Lanes
+// showing no triangle may hold anything: the caller writes their empty values.
+struct ResolveLanes8 {
+  alignas(32) float e1[3][8], e2[3][8], s[3][8], q[3][8], gn[3][8], e2q[8];
+  alignas(32) float n[3][3][8];   // vertex k's normal, component c, lane
+  alignas(32) float uv[3][2][8];  // vertex k's uv
+  alignas(32) int32_t has_n[8], has_uv[8];  // -1 where the lane's mesh has them, else 0
+};
+// The camera fields of `camera` (its triangle fields unused) and the lanes' triangles.
+using ResolveLanes8Fn = void (*)(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
+                                 int y, const float* inv_w, vec3* position, vec3* normal,
+                                 vec3* geo_normal, vec2* uv, float* depth);
+ResolveLanes8Fn resolve_lanes8_simd();
 
 }  // namespace shadowlab

@@ -18,12 +18,32 @@ bool same(const std::vector<T>& a, const std::vector<T>& b) {
 
 TEST(GBufferResolveSimd, MatchesScalarResolveBitForBit) {
   if (!resolve_run8_simd()) GTEST_SKIP() << "no AVX2 path on this CPU (or SHADOWLAB_SCALAR=1)";
-  std::vector<std::string> names = {"default", "room100k", "plane"};
+  // foliage and bunny mix meshes with and without uvs and normals in one row's 8 pixels (the
+  // mixed-triangle path's per-lane flags).
+  std::vector<std::string> names = {"default", "room100k", "plane", "foliage", "bunny"};
   // An OBJ with uvs and vertex normals, when the shared assets are present.
   if (!test::assets_dir().empty()) names.push_back(test::assets_dir() + "/palm_tree/palm_tree.obj");
+  names.push_back("mixed");
   for (const std::string& name : names) {
-    Scene scene = name.find(".obj") != std::string::npos ? make_obj_scene(name)
-                                                          : make_builtin_scene(name);
+    Scene scene = name == "mixed"                           ? make_builtin_scene("default")
+                  : name.find(".obj") != std::string::npos ? make_obj_scene(name)
+                                                            : make_builtin_scene(name);
+    if (name == "mixed") {
+      // Neighbouring meshes with and without vertex normals and uvs, so that one row's 8
+      // pixels mix them (the mixed-triangle path's per-lane flags): normals away from the
+      // mesh's first vertex on every other mesh, uvs from x and z on every third.
+      for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        Mesh& mesh = scene.meshes[m];
+        mesh.normals.clear();
+        mesh.uvs.clear();
+        for (const vec3& p : mesh.positions) {
+          const vec3 d = p - mesh.positions[0] + vec3(0.1f, 0.2f, 0.3f);
+          if (m % 2 == 0) mesh.normals.push_back(glm::normalize(d));
+          if (m % 3 == 0) mesh.uvs.push_back(vec2(p.x, p.z));
+        }
+      }
+      ASSERT_GE(scene.meshes.size(), 6u);
+    }
     scene.camera.width = 509;  // not a multiple of 8: runs end early at the right edge
     scene.camera.height = 300;
     GBuffer fast, slow;
