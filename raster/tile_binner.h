@@ -5,6 +5,8 @@
 // visit the chunks in order, so every tile sees its triangles in submission order whatever the
 // thread count.
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -31,9 +33,31 @@ struct MeshView {
 // (left, right, bottom, top or near). Conservative: false means "may be visible".
 bool box_outside_frustum(const vec3& lo, const vec3& hi, const mat4& view_proj);
 
+// An allocator whose value-initialization is default-initialization: resize() leaves new
+// setups unwritten, so the 8-triangle setup writes its records in place (every field) instead
+// of through a staging copy (a memmove of 1.4 KB per batch was 3 % of room1m's cube).
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 // Triangles of one chunk that touch one tile are setups[chunk][items[offsets[t] .. offsets[t+1])].
 struct BinnedChunk {
-  std::vector<TriangleSetup> setups;
+  std::vector<TriangleSetup, DefaultInitAllocator<TriangleSetup>> setups;
   std::vector<uint32_t> offsets;  // tiles + 1 entries
   std::vector<uint32_t> items;    // indices into setups
 };
