@@ -8,6 +8,7 @@
 #endif
 
 #include "core/cpu_features.h"
+#include "raster/setup.h"
 
 namespace shadowlab {
 
@@ -285,7 +286,95 @@ __attribute__((target("avx2"))) static void depth_row8_avx2_impl(const DepthRow8
   }
 }
 
+
+__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_triangle_avx512_impl(
+    const TriangleSetup& s, int x0, int y0, int x1, int y1, float* z, uint32_t* ids,
+    size_t width) {
+  const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
+  const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
+  if (min_x > max_x || min_y > max_y) return;
+  constexpr int kBlock = 8;
+  const int64_t one = int64_t(1) << kSubpixelBits, half = one / 2;
+  const __m512i iota = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+  int64_t step_x[3], step_y[3], bstep[3], x_span[3];
+  __m512i lane[3], dy[3];
+  for (int k = 0; k < 3; ++k) {
+    step_x[k] = s.a[k] * one;
+    step_y[k] = s.b[k] * one;
+    bstep[k] = step_x[k] * kBlock;
+    x_span[k] = step_x[k] * (kBlock - 1);
+    lane[k] = _mm512_mullo_epi64(_mm512_set1_epi64(step_x[k]), iota);
+    dy[k] = _mm512_set1_epi64(step_y[k]);
+  }
+  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256 z_dx = _mm256_set1_ps(s.z_dx);
+  const float z0 = s.z0, z_dy = s.z_dy;
+  const __m256 z_lo = _mm256_set1_ps(s.z_lo), z_hi = _mm256_set1_ps(s.z_hi);
+  const __m256i id = _mm256_set1_epi32(int(s.triangle));
+  const __m512i zero = _mm512_setzero_si512();
+  const int bx_start = min_x - (min_x - x0) % kBlock;
+  const int by_start = min_y - (min_y - y0) % kBlock;
+  for (int by = by_start; by <= max_y; by += kBlock) {
+    const int py0 = std::max(by, min_y), py1 = std::min(by + kBlock - 1, max_y);
+    const int rows = py1 - py0 + 1, oy = py0 - s.min_y;
+    int64_t e[3], lo_off[3], hi_off[3];
+    for (int k = 0; k < 3; ++k) {
+      e[k] = s.a[k] * (int64_t(bx_start) * one + half) + s.b[k] * (int64_t(py0) * one + half) +
+             s.c[k];
+      const int64_t d = step_y[k] * int64_t(py1 - py0);
+      lo_off[k] = std::min<int64_t>(0, x_span[k]) + std::min<int64_t>(0, d);
+      hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, d);
+    }
+    float* const zrow = z + size_t(py0) * width;
+    uint32_t* const idrow = ids ? ids + size_t(py0) * width : nullptr;
+    for (int bx = bx_start; bx <= max_x;
+         bx += kBlock, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
+      if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
+      const bool inside =
+          e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
+      // The viewport's right edge: lanes from x1 on are not pixels.
+      const __mmask8 lanes =
+          bx + kBlock > x1 ? __mmask8((1u << (x1 - bx)) - 1u) : __mmask8(0xFF);
+      __m512i ev[3];
+      for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(_mm512_set1_epi64(e[k]), lane[k]);
+      const __m256 x = _mm256_cvtepi32_ps(
+          _mm256_add_epi32(_mm256_set1_epi32(bx - s.min_x), lane_i));
+      const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
+      float* const zb = zrow + bx;
+      uint32_t* const idb = idrow ? idrow + bx : nullptr;
+      for (int r = 0; r < rows; ++r) {
+        __mmask8 covered = lanes;
+        if (!inside) {
+          const __m512i any = _mm512_or_si512(_mm512_or_si512(ev[0], ev[1]), ev[2]);
+          covered = __mmask8(covered & _mm512_cmpge_epi64_mask(any, zero));
+          for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
+        }
+        if (!covered) continue;
+        const float zy = z0 + z_dy * float(oy + r);
+        const __m256 iw =
+            _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+        float* row = zb + size_t(r) * width;
+        const __mmask8 nearer =
+            _mm256_mask_cmp_ps_mask(covered, iw, _mm256_maskz_loadu_ps(covered, row), _CMP_GT_OQ);
+        _mm256_mask_storeu_ps(row, nearer, iw);
+        if (idb) _mm256_mask_storeu_epi32(idb + size_t(r) * width, nearer, id);
+      }
+    }
+  }
+}
+
 #endif
+
+DepthTriangleFn depth_triangle_avx512() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (cpu_has_avx512()) return depth_triangle_avx512_impl;
+#endif
+  return nullptr;
+}
+
+DepthTriangleFn depth_triangle_selected() {
+  return depth_block8_selected() == depth_block8_avx512() ? depth_triangle_avx512() : nullptr;
+}
 
 DepthRow8Fn depth_row8_avx512() {
 #ifdef SHADOWLAB_HAVE_X86

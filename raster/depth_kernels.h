@@ -73,4 +73,16 @@ inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
   fn(r, z, stride);
 }
 
+// A whole triangle inside the rectangle [x0, x1) × [y0, y1) of a width-wide target (z, and
+// ids when not null): rasterize_depth_in_rect's walk and depth_row8's blocks in one AVX-512
+// function, the per-triangle fields in registers; the viewport's right edge cuts the last
+// block's lanes (masked loads and stores) where the walk takes that block pixel by pixel.
+// Per pixel the same coverage and float operations, so the same bits.
+struct TriangleSetup;
+using DepthTriangleFn = void (*)(const TriangleSetup& s, int x0, int y0, int x1, int y1,
+                                 float* z, uint32_t* ids, size_t width);
+DepthTriangleFn depth_triangle_avx512();
+// The AVX-512 form when depth_block8_selected() is the AVX-512 kernel, else nullptr.
+DepthTriangleFn depth_triangle_selected();
+
 }  // namespace shadowlab

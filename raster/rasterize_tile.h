@@ -73,8 +73,14 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
   const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
   const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
   if (min_x > max_x || min_y > max_y) return;
-  const int64_t half = kSubpixelOne / 2;
   const size_t width = size_t(depth.width);
+  static const DepthTriangleFn whole = depth_triangle_selected();
+  if (whole) {
+    whole(s, x0, y0, x1, y1, depth.inv_w.data(), depth.with_ids ? depth.ids.data() : nullptr,
+          width);
+    return;
+  }
+  const int64_t half = kSubpixelOne / 2;
   DepthRow8 row;
   int64_t x_span[3];
   for (int k = 0; k < 3; ++k) {
