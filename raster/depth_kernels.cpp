@@ -349,7 +349,6 @@ __attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_triangle_
           covered = __mmask8(covered & _mm512_cmpge_epi64_mask(any, zero));
           for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
         }
-        if (!covered) continue;
         const float zy = z0 + z_dy * float(oy + r);
         const __m256 iw =
             _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
