@@ -267,7 +267,6 @@ __attribute__((target("avx2"))) static void depth_row8_avx2_impl(const DepthRow8
           hi[k] = _mm256_add_epi64(hi[k], dy[k]);
         }
       }
-      if (out_bits == 0xFF) continue;
       const __m256i covered = _mm256_cmpeq_epi32(
           _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
       const float zy = z0 + z_dy * float(oy + r);
