@@ -90,6 +90,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   const PixelRays rays(cam);
   const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
   const ResolveLanes8Fn lanes8 = allow_simd ? resolve_lanes8_simd() : nullptr;
+  const ResolveLanes16Fn lanes16 = allow_simd ? resolve_lanes16_simd() : nullptr;
   // Chunks of one block row each: a chunk also leaves the position bounds of its blocks
   // (GBuffer::block_bounds), from the positions while they are in registers.
   g.block_bounds.assign(size_t(g.blocks_x()) * size_t(g.blocks_y()), BlockBounds{});
@@ -145,10 +146,53 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
       g.covered[i] = 0;
     };
     alignas(32) ResolveLanes8 lanes;
+    alignas(64) ResolveLanes16 lanes_w{};  // zeros: lanes no pixel has filled yet are inert
     for (size_t y = y0; y < y1; ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = y * size_t(w) + size_t(x);
         const uint32_t t = vis.ids[i];
+        if (lanes16 && x + 16 <= w) {
+          // Sixteen pixels in AVX-512, each lane its own triangle's terms (runs of one
+          // triangle filled at once), the same bits as the code below; then the empty lanes.
+          const uint32_t* ids = &vis.ids[i];
+          uint32_t covered = 0;
+          for (int k = 0; k < 16; ++k) covered |= uint32_t(ids[k] != kNoPrimitive) << k;
+          if (covered == 0) {
+            for (int k = 0; k < 16; ++k) empty_pixel(i + size_t(k));
+            x += 15;
+            continue;
+          }
+          for (int k = 0; k < 16;) {
+            const uint32_t tk = ids[k];
+            int k1 = k + 1;
+            while (k1 < 16 && ids[k1] == tk) ++k1;
+            if (tk != kNoPrimitive) {
+              load_triangle(tk);
+              const vec3* n[3];
+              const vec2* uv[3];
+              for (int v = 0; v < 3; ++v) {
+                n[v] = tri.mesh->normals.empty() ? nullptr : &tri.mesh->normals[tri.idx[v]];
+                uv[v] = tri.mesh->uvs.empty() ? nullptr : &tri.mesh->uvs[tri.idx[v]];
+              }
+              const uint32_t run_mask = ((1u << k1) - 1u) & ~((1u << k) - 1u);
+              resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.s, tri.q, tri.gn,
+                                   tri.e2q, n[0] ? n : nullptr, uv[0] ? uv : nullptr);
+              for (int kk = k; kk < k1; ++kk) {
+                g.mesh_id[i + size_t(kk)] = tri.m;
+                g.prim_id[i + size_t(kk)] = tri.p;
+                g.covered[i + size_t(kk)] = 1;
+              }
+            }
+            k = k1;
+          }
+          lanes16(run, lanes_w, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],
+                  &g.geo_normal[i], &g.uv[i], &g.depth[i]);
+          if (covered != 0xFFFFu)
+            for (int k = 0; k < 16; ++k)
+              if (!((covered >> k) & 1)) empty_pixel(i + size_t(k));
+          x += 15;
+          continue;
+        }
         if (lanes8 && x + 8 <= w) {
           int covered = 0;
           for (int k = 0; k < 8; ++k) covered += vis.ids[i + size_t(k)] != kNoPrimitive;

@@ -182,12 +182,167 @@ SL_AVX2 void resolve_lanes8_avx2(const ResolveRun8& camera, const ResolveLanes8&
 
 #undef SL_AVX2
 
+#define SL_AVX512 __attribute__((target("avx512f,avx512dq")))
+
+struct W3 {
+  __m512 x, y, z;
+};
+SL_AVX512 inline __m512 bw(float v) { return _mm512_set1_ps(v); }
+SL_AVX512 inline W3 load3w(const float (*v)[16]) {
+  return {_mm512_load_ps(v[0]), _mm512_load_ps(v[1]), _mm512_load_ps(v[2])};
+}
+SL_AVX512 inline __m512 dotw(const W3& a, const W3& b) {
+  return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(a.x, b.x), _mm512_mul_ps(a.y, b.y)),
+                       _mm512_mul_ps(a.z, b.z));
+}
+SL_AVX512 inline W3 crossw(const W3& a, const W3& b) {
+  return {_mm512_sub_ps(_mm512_mul_ps(a.y, b.z), _mm512_mul_ps(b.y, a.z)),
+          _mm512_sub_ps(_mm512_mul_ps(a.z, b.x), _mm512_mul_ps(b.z, a.x)),
+          _mm512_sub_ps(_mm512_mul_ps(a.x, b.y), _mm512_mul_ps(b.x, a.y))};
+}
+SL_AVX512 inline __m512 interpw(__m512 l0, __m512 l1, __m512 l2, __m512 a, __m512 b, __m512 c) {
+  return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(l0, a), _mm512_mul_ps(l1, b)),
+                       _mm512_mul_ps(l2, c));
+}
+SL_AVX512 inline void store3w(vec3* out, const W3& v) {
+  alignas(64) float t[3][16];
+  _mm512_store_ps(t[0], v.x);
+  _mm512_store_ps(t[1], v.y);
+  _mm512_store_ps(t[2], v.z);
+  for (int i = 0; i < 16; ++i) out[i] = vec3(t[0][i], t[1][i], t[2][i]);
+}
+SL_AVX512 inline __m512 absw(__m512 v) {
+  return _mm512_andnot_ps(_mm512_set1_ps(-0.0f), v);
+}
+
+// resolve8's operations on 16 lanes (compare masks where it blends).
+SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16& t, int x,
+                                      int y, const float* inv_w, vec3* position, vec3* normal,
+                                      vec3* geo_normal, vec2* uv, float* depth_out) {
+  const __m512 zero = _mm512_setzero_ps(), one = bw(1.0f);
+  const __m512 xs = _mm512_maskz_cvtepi32_ps(
+      0xFFFF, _mm512_add_epi32(_mm512_set1_epi32(x), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8,
+                                                                       9, 10, 11, 12, 13, 14, 15)));
+  const __m512 nx = _mm512_sub_ps(
+      _mm512_mul_ps(_mm512_div_ps(_mm512_add_ps(xs, bw(0.5f)), bw(float(r.width))), bw(2.0f)), one);
+  const float nys = (1.0f - (float(y) + 0.5f) / float(r.height) * 2.0f) * r.sy;
+  const __m512 nxs = _mm512_mul_ps(nx, bw(r.sx));
+  const W3 d = {_mm512_add_ps(_mm512_add_ps(bw(r.forward.x), _mm512_mul_ps(nxs, bw(r.right.x))), bw(nys * r.up.x)),
+                _mm512_add_ps(_mm512_add_ps(bw(r.forward.y), _mm512_mul_ps(nxs, bw(r.right.y))), bw(nys * r.up.y)),
+                _mm512_add_ps(_mm512_add_ps(bw(r.forward.z), _mm512_mul_ps(nxs, bw(r.right.z))), bw(nys * r.up.z))};
+  const W3 pv = crossw(d, load3w(t.e2));
+  const __m512 det = dotw(load3w(t.e1), pv);
+  __m512 depth = _mm512_div_ps(one, _mm512_loadu_ps(inv_w));
+  __m512 l0 = bw(1.0f / 3.0f), l1 = l0, l2 = l0;
+  const __mmask16 ok_det = _mm512_cmp_ps_mask(absw(det), bw(1e-30f), _CMP_GT_OQ);
+  const __m512 inv_det = _mm512_div_ps(one, det);
+  const __m512 u = _mm512_mul_ps(dotw(load3w(t.s), pv), inv_det);
+  const __m512 v = _mm512_mul_ps(dotw(d, load3w(t.q)), inv_det);
+  const __m512 tt = _mm512_mul_ps(_mm512_load_ps(t.e2q), inv_det);
+  const __mmask16 hit = __mmask16(ok_det &
+                                  _mm512_cmp_ps_mask(absw(tt), bw(__builtin_inff()), _CMP_LT_OQ) &
+                                  _mm512_cmp_ps_mask(tt, zero, _CMP_GT_OQ));
+  l0 = _mm512_mask_blend_ps(hit, l0, _mm512_sub_ps(_mm512_sub_ps(one, u), v));
+  l1 = _mm512_mask_blend_ps(hit, l1, u);
+  l2 = _mm512_mask_blend_ps(hit, l2, v);
+  depth = _mm512_mask_blend_ps(hit, depth, tt);
+  const W3 pos = {_mm512_add_ps(bw(r.eye.x), _mm512_mul_ps(depth, d.x)),
+                  _mm512_add_ps(bw(r.eye.y), _mm512_mul_ps(depth, d.y)),
+                  _mm512_add_ps(bw(r.eye.z), _mm512_mul_ps(depth, d.z))};
+  W3 gn = load3w(t.gn);
+  W3 sn = gn;
+  if (t.has_n) {
+    const W3 n = {interpw(l0, l1, l2, _mm512_load_ps(t.n[0][0]), _mm512_load_ps(t.n[1][0]), _mm512_load_ps(t.n[2][0])),
+                  interpw(l0, l1, l2, _mm512_load_ps(t.n[0][1]), _mm512_load_ps(t.n[1][1]), _mm512_load_ps(t.n[2][1])),
+                  interpw(l0, l1, l2, _mm512_load_ps(t.n[0][2]), _mm512_load_ps(t.n[1][2]), _mm512_load_ps(t.n[2][2]))};
+    const __m512 nl = _mm512_maskz_sqrt_ps(0xFFFF, dotw(n, n));
+    const __mmask16 use = __mmask16(_mm512_cmp_ps_mask(nl, zero, _CMP_GT_OQ) & t.has_n);
+    sn = {_mm512_mask_blend_ps(use, sn.x, _mm512_div_ps(n.x, nl)),
+          _mm512_mask_blend_ps(use, sn.y, _mm512_div_ps(n.y, nl)),
+          _mm512_mask_blend_ps(use, sn.z, _mm512_div_ps(n.z, nl))};
+  }
+  const W3 to_eye = {_mm512_sub_ps(bw(r.eye.x), pos.x), _mm512_sub_ps(bw(r.eye.y), pos.y),
+                     _mm512_sub_ps(bw(r.eye.z), pos.z)};
+  const __m512 sign = bw(-0.0f);
+  const __mmask16 flip_g = _mm512_cmp_ps_mask(dotw(gn, to_eye), zero, _CMP_LT_OQ);
+  gn = {_mm512_mask_xor_ps(gn.x, flip_g, gn.x, sign), _mm512_mask_xor_ps(gn.y, flip_g, gn.y, sign),
+        _mm512_mask_xor_ps(gn.z, flip_g, gn.z, sign)};
+  const __mmask16 flip_s = _mm512_cmp_ps_mask(dotw(sn, gn), zero, _CMP_LT_OQ);
+  sn = {_mm512_mask_xor_ps(sn.x, flip_s, sn.x, sign), _mm512_mask_xor_ps(sn.y, flip_s, sn.y, sign),
+        _mm512_mask_xor_ps(sn.z, flip_s, sn.z, sign)};
+  store3w(position, pos);
+  store3w(normal, sn);
+  store3w(geo_normal, gn);
+  _mm512_storeu_ps(depth_out, depth);
+  if (t.has_uv) {
+    alignas(64) float tu[16], tv[16];
+    const __mmask16 has = __mmask16(t.has_uv);
+    _mm512_store_ps(tu, _mm512_maskz_mov_ps(has, interpw(l0, l1, l2, _mm512_load_ps(t.uv[0][0]),
+                                                           _mm512_load_ps(t.uv[1][0]),
+                                                           _mm512_load_ps(t.uv[2][0]))));
+    _mm512_store_ps(tv, _mm512_maskz_mov_ps(has, interpw(l0, l1, l2, _mm512_load_ps(t.uv[0][1]),
+                                                           _mm512_load_ps(t.uv[1][1]),
+                                                           _mm512_load_ps(t.uv[2][1]))));
+    for (int i = 0; i < 16; ++i) uv[i] = vec2(tu[i], tv[i]);
+  } else {
+    for (int i = 0; i < 16; ++i) uv[i] = vec2(0.0f);
+  }
+}
+
+SL_AVX512 inline void put3(float (*dst)[16], __mmask16 m, const vec3& v) {
+  for (int c = 0; c < 3; ++c) _mm512_mask_storeu_ps(dst[c], m, bw(v[c]));
+}
+
+}  // namespace
+
+SL_AVX512 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1,
+                                    const vec3& e2, const vec3& s, const vec3& q, const vec3& gn,
+                                    float e2q, const vec3* const* n, const vec2* const* uv) {
+  const __mmask16 m = __mmask16(mask);
+  put3(l.e1, m, e1);
+  put3(l.e2, m, e2);
+  put3(l.s, m, s);
+  put3(l.q, m, q);
+  put3(l.gn, m, gn);
+  _mm512_mask_storeu_ps(l.e2q, m, bw(e2q));
+  if (n) {
+    for (int k = 0; k < 3; ++k) put3(l.n[k], m, *n[k]);
+    l.has_n |= mask;
+  } else {
+    l.has_n &= ~mask;
+  }
+  if (uv) {
+    for (int k = 0; k < 3; ++k) {
+      _mm512_mask_storeu_ps(l.uv[k][0], m, bw(uv[k]->x));
+      _mm512_mask_storeu_ps(l.uv[k][1], m, bw(uv[k]->y));
+    }
+    l.has_uv |= mask;
+  } else {
+    l.has_uv &= ~mask;
+  }
+}
+
+namespace {
+#undef SL_AVX512
+
 }  // namespace
 #endif
 
 ResolveRun8Fn resolve_run8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return resolve_run8_avx2;
+#endif
+  return nullptr;
+}
+
+#ifndef SHADOWLAB_HAVE_X86
+void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, const vec3&,
+                          const vec3&, const vec3&, float, const vec3* const*, const vec2* const*) {}
+#endif
+
+ResolveLanes16Fn resolve_lanes16_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx512_paths()) return resolve_lanes16_avx512;
 #endif
   return nullptr;
 }

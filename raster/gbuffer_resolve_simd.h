@@ -46,4 +46,23 @@ using ResolveLanes8Fn = void (*)(const ResolveRun8& camera, const ResolveLanes8&
                                  vec3* geo_normal, vec2* uv, float* depth);
 ResolveLanes8Fn resolve_lanes8_simd();
 
+// 16 neighbouring pixels in AVX-512, each lane its own triangle as in ResolveLanes8 (runs of
+// one triangle are filled with one masked store per term); has_n and has_uv are lane bits.
+struct ResolveLanes16 {
+  alignas(64) float e1[3][16], e2[3][16], s[3][16], q[3][16], gn[3][16], e2q[16];
+  alignas(64) float n[3][3][16];   // vertex k's normal, component c, lane
+  alignas(64) float uv[3][2][16];  // vertex k's uv
+  uint32_t has_n = 0, has_uv = 0;  // bit k: lane k's mesh has normals (uvs)
+};
+using ResolveLanes16Fn = void (*)(const ResolveRun8& camera, const ResolveLanes16& lanes, int x,
+                                  int y, const float* inv_w, vec3* position, vec3* normal,
+                                  vec3* geo_normal, vec2* uv, float* depth);
+// The AVX-512 path (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced.
+ResolveLanes16Fn resolve_lanes16_simd();
+// Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term (n, uv:
+// the vertices' normals and uvs, nullptr where the mesh has none). Only with the path above.
+void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1, const vec3& e2,
+                          const vec3& s, const vec3& q, const vec3& gn, float e2q,
+                          const vec3* const* n, const vec2* const* uv);
+
 }  // namespace shadowlab
