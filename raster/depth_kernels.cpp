@@ -72,9 +72,60 @@ void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride) {
 }
 
 #ifdef SHADOWLAB_HAVE_X86
-__attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBlock8& b, float* z,
-                                                                   size_t stride) {
-  // Per edge, lanes 0-3 and 4-7 of the first row; each row adds step_y to every lane.
+#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq")))
+
+// The plane's x term of a block's 8 lanes: z_dx * float(ox + i).
+SL_AVX2 inline __m256 plane_x_avx2(float z_dx, int ox) {
+  const __m256 x = _mm256_cvtepi32_ps(
+      _mm256_add_epi32(_mm256_set1_epi32(ox), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  return _mm256_mul_ps(_mm256_set1_ps(z_dx), x);
+}
+
+// What a block's rows share, in registers: the stores may alias the caller's records as far as
+// the compiler knows, which would otherwise reload every field on every row.
+struct PlaneRows {
+  float z0, z_dy;
+  int oy, rows;
+};
+
+// The rows of one block, AVX2: lo/hi hold each edge's lanes 0-3 and 4-7 at the first row, and
+// every row adds step_y (dy) to them. A row with no covered lane still runs its (then empty)
+// blend and store: a branch there was mispredicted on the small triangles' partial rows.
+SL_AVX2 inline void block_rows_avx2(__m256i* lo, __m256i* hi, const __m256i* dy, bool inside,
+                                    __m256 zx, const PlaneRows& p, __m256 z_lo, __m256 z_hi,
+                                    __m256 id, float* z, uint32_t* ids, size_t stride) {
+  const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  for (int r = 0; r < p.rows; ++r) {
+    int out_bits = 0;
+    if (!inside) {
+      const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
+      const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
+      out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
+                 (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = _mm256_add_epi64(lo[k], dy[k]);
+        hi[k] = _mm256_add_epi64(hi[k], dy[k]);
+      }
+    }
+    const __m256i covered = _mm256_cmpeq_epi32(
+        _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
+    const float zy = p.z0 + p.z_dy * float(p.oy + r);
+    const __m256 iw =
+        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+    float* row = z + size_t(r) * stride;
+    const __m256 old = _mm256_loadu_ps(row);
+    const __m256 nearer =
+        _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), _mm256_castsi256_ps(covered));
+    _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
+    if (ids) {
+      float* idr = reinterpret_cast<float*>(ids + size_t(r) * stride);
+      _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
+    }
+  }
+}
+
+SL_AVX2 static void depth_block8_avx2_impl(const DepthBlock8& b, float* z, size_t stride) {
   __m256i lo[3], hi[3], dy[3];
   for (int k = 0; k < 3; ++k) {
     const __m256i e = _mm256_set1_epi64x(b.edge[k]);
@@ -82,213 +133,88 @@ __attribute__((target("avx2"))) static void depth_block8_avx2_impl(const DepthBl
     hi[k] = _mm256_add_epi64(e, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b.lane_x[k] + 4)));
     dy[k] = _mm256_set1_epi64x(b.step_y[k]);
   }
-  const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(b.ox),
-                                                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-  const __m256 zx = _mm256_mul_ps(_mm256_set1_ps(b.z_dx), x);  // z_dx * float(ox + i)
-  // Everything the rows need, in registers: the stores below may alias `b` as far as the
-  // compiler knows, which would otherwise reload every field on every row.
-  const float z0 = b.z0, z_dy = b.z_dy;
-  const __m256 z_lo = _mm256_set1_ps(b.z_lo), z_hi = _mm256_set1_ps(b.z_hi);
-  const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(b.id)));
-  uint32_t* const ids = b.ids;
-  const bool inside = b.inside;
-  const int rows = b.rows, oy = b.oy;
-  for (int r = 0; r < rows; ++r) {
-    int out_bits = 0;
-    if (!inside) {
-      const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
-      const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
-      out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
-                 (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
-    }
-    if (out_bits != 0xFF) {
-      const __m256i covered = _mm256_cmpeq_epi32(
-          _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
-      const float zy = z0 + z_dy * float(oy + r);
-      const __m256 iw = _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
-      float* row = z + size_t(r) * stride;
-      const __m256 old = _mm256_loadu_ps(row);
-      const __m256 nearer =
-          _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), _mm256_castsi256_ps(covered));
-      _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
-      if (ids) {
-        float* idr = reinterpret_cast<float*>(ids + size_t(r) * stride);
-        _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
-      }
-    }
-    if (!inside)
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = _mm256_add_epi64(lo[k], dy[k]);
-        hi[k] = _mm256_add_epi64(hi[k], dy[k]);
-      }
-  }
+  block_rows_avx2(lo, hi, dy, b.inside, plane_x_avx2(b.z_dx, b.ox), {b.z0, b.z_dy, b.oy, b.rows},
+                  _mm256_set1_ps(b.z_lo), _mm256_set1_ps(b.z_hi),
+                  _mm256_castsi256_ps(_mm256_set1_epi32(int(b.id))), z, b.ids, stride);
 }
 
-// The AVX-512 form of the AVX2 kernel: each edge's 8 lanes in one register, the covered lanes
-// and the depth test as mask registers, masked stores where the AVX2 kernel blends. The same
-// integer and IEEE float operations per lane (the plane value, its clamp, the > test), so the
-// same bits (tests/raster/depth_kernels_test.cpp).
-__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_block8_avx512_impl(
-    const DepthBlock8& b, float* z, size_t stride) {
-  __m512i e[3], dy[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = _mm512_add_epi64(_mm512_set1_epi64(b.edge[k]), _mm512_loadu_si512(b.lane_x[k]));
-    dy[k] = _mm512_set1_epi64(b.step_y[k]);
-  }
-  const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(b.ox),
-                                                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-  const __m256 zx = _mm256_mul_ps(_mm256_set1_ps(b.z_dx), x);  // z_dx * float(ox + i)
-  const float z0 = b.z0, z_dy = b.z_dy;
-  const __m256 z_lo = _mm256_set1_ps(b.z_lo), z_hi = _mm256_set1_ps(b.z_hi);
-  const __m256i id = _mm256_set1_epi32(int(b.id));
-  uint32_t* const ids = b.ids;
-  const bool inside = b.inside;
-  const int rows = b.rows, oy = b.oy;
-  const __m512i zero = _mm512_setzero_si512();
-  for (int r = 0; r < rows; ++r) {
-    __mmask8 covered = 0xFF;
-    if (!inside) {
-      const __m512i any = _mm512_or_si512(_mm512_or_si512(e[0], e[1]), e[2]);
-      covered = _mm512_cmpge_epi64_mask(any, zero);
-      for (int k = 0; k < 3; ++k) e[k] = _mm512_add_epi64(e[k], dy[k]);
-    }
-    if (covered) {
-      const float zy = z0 + z_dy * float(oy + r);
-      const __m256 iw = _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
-      float* row = z + size_t(r) * stride;
-      const __mmask8 nearer = _mm256_mask_cmp_ps_mask(covered, iw, _mm256_loadu_ps(row), _CMP_GT_OQ);
-      _mm256_mask_storeu_ps(row, nearer, iw);
-      if (ids) _mm256_mask_storeu_epi32(ids + size_t(r) * stride, nearer, id);
-    }
-  }
-}
-
-
-// The row of blocks in one call: the per-block body of depth_block8_avx512_impl, its lane
-// offsets step_x · i made once per row (vpmullq: the same exact int64 products as lane_x).
-__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_row8_avx512_impl(
-    const DepthRow8& rw, float* z, size_t stride) {
-  const __m512i iota = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
-  __m512i lane[3], dy[3];
-  int64_t e[3], bstep[3], lo_off[3], hi_off[3];
-  for (int k = 0; k < 3; ++k) {
-    lane[k] = _mm512_mullo_epi64(_mm512_set1_epi64(rw.step_x[k]), iota);
-    dy[k] = _mm512_set1_epi64(rw.step_y[k]);
-    e[k] = rw.edge[k];
-    bstep[k] = rw.block_step[k];
-    lo_off[k] = rw.lo_off[k];
-    hi_off[k] = rw.hi_off[k];
-  }
-  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256 z_dx = _mm256_set1_ps(rw.z_dx);
-  const float z0 = rw.z0, z_dy = rw.z_dy;
-  const __m256 z_lo = _mm256_set1_ps(rw.z_lo), z_hi = _mm256_set1_ps(rw.z_hi);
-  const __m256i id = _mm256_set1_epi32(int(rw.id));
-  uint32_t* const ids = rw.ids;
-  const int rows = rw.rows, oy = rw.oy, blocks = rw.blocks, ox0 = rw.ox;
-  const __m512i zero = _mm512_setzero_si512();
-  for (int j = 0; j < blocks; ++j, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
-    if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
-    const bool inside = e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
-    __m512i ev[3];
-    for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(_mm512_set1_epi64(e[k]), lane[k]);
-    const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(ox0 + 8 * j), lane_i));
-    const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
-    float* const zb = z + 8 * size_t(j);
-    uint32_t* const idb = ids ? ids + 8 * size_t(j) : nullptr;
-    for (int r = 0; r < rows; ++r) {
-      __mmask8 covered = 0xFF;
-      if (!inside) {
-        const __m512i any = _mm512_or_si512(_mm512_or_si512(ev[0], ev[1]), ev[2]);
-        covered = _mm512_cmpge_epi64_mask(any, zero);
-        for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
-      }
-      if (covered) {
-        const float zy = z0 + z_dy * float(oy + r);
-        const __m256 iw =
-            _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
-        float* row = zb + size_t(r) * stride;
-        const __mmask8 nearer =
-            _mm256_mask_cmp_ps_mask(covered, iw, _mm256_loadu_ps(row), _CMP_GT_OQ);
-        _mm256_mask_storeu_ps(row, nearer, iw);
-        if (idb) _mm256_mask_storeu_epi32(idb + size_t(r) * stride, nearer, id);
-      }
-    }
-  }
-}
-
-// The AVX2 row: the per-block body of depth_block8_avx2_impl, its lane offsets step_x · i made
-// once per row (exact int64 sums: the same values as lane_x).
-__attribute__((target("avx2"))) static void depth_row8_avx2_impl(const DepthRow8& rw, float* z,
-                                                                 size_t stride) {
+// The AVX2 row of blocks: block_rows_avx2 per block, the lane offsets step_x · i made once per
+// row (exact int64 sums: the values of lane_x).
+SL_AVX2 static void depth_row8_avx2_impl(const DepthRow8& rw, float* z, size_t stride) {
   __m256i lane_lo[3], lane_hi[3], dy[3];
-  int64_t e[3], bstep[3], lo_off[3], hi_off[3];
+  int64_t e[3];
   for (int k = 0; k < 3; ++k) {
     const int64_t s1 = rw.step_x[k], s2 = s1 + s1, s3 = s2 + s1, s4 = s2 + s2;
     lane_lo[k] = _mm256_setr_epi64x(0, s1, s2, s3);
     lane_hi[k] = _mm256_add_epi64(lane_lo[k], _mm256_set1_epi64x(s4));
     dy[k] = _mm256_set1_epi64x(rw.step_y[k]);
     e[k] = rw.edge[k];
-    bstep[k] = rw.block_step[k];
-    lo_off[k] = rw.lo_off[k];
-    hi_off[k] = rw.hi_off[k];
   }
-  const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256 z_dx = _mm256_set1_ps(rw.z_dx);
-  const float z0 = rw.z0, z_dy = rw.z_dy;
+  const PlaneRows p{rw.z0, rw.z_dy, rw.oy, rw.rows};
   const __m256 z_lo = _mm256_set1_ps(rw.z_lo), z_hi = _mm256_set1_ps(rw.z_hi);
   const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(rw.id)));
-  uint32_t* const ids = rw.ids;
-  const int rows = rw.rows, oy = rw.oy, blocks = rw.blocks, ox0 = rw.ox;
-  for (int j = 0; j < blocks; ++j, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
-    if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
-    const bool inside = e[0] + lo_off[0] >= 0 && e[1] + lo_off[1] >= 0 && e[2] + lo_off[2] >= 0;
-    __m256i lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-      const __m256i ek = _mm256_set1_epi64x(e[k]);
-      lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
-      hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
-    }
-    const __m256 x = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(ox0 + 8 * j), lane_i));
-    const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
-    float* const zb = z + 8 * size_t(j);
-    uint32_t* const idb = ids ? ids + 8 * size_t(j) : nullptr;
-    for (int r = 0; r < rows; ++r) {
-      int out_bits = 0;
-      if (!inside) {
-        const __m256i l = _mm256_or_si256(_mm256_or_si256(lo[0], lo[1]), lo[2]);
-        const __m256i h = _mm256_or_si256(_mm256_or_si256(hi[0], hi[1]), hi[2]);
-        out_bits = _mm256_movemask_pd(_mm256_castsi256_pd(l)) |
-                   (_mm256_movemask_pd(_mm256_castsi256_pd(h)) << 4);
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = _mm256_add_epi64(lo[k], dy[k]);
-          hi[k] = _mm256_add_epi64(hi[k], dy[k]);
-        }
+  for (int j = 0; j < rw.blocks; ++j) {
+    bool inside = false;
+    if (row_block(rw, e, inside)) {
+      __m256i lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        const __m256i ek = _mm256_set1_epi64x(e[k]);
+        lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
+        hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
       }
-      const __m256i covered = _mm256_cmpeq_epi32(
-          _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
-      const float zy = z0 + z_dy * float(oy + r);
-      const __m256 iw =
-          _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
-      float* row = zb + size_t(r) * stride;
-      const __m256 old = _mm256_loadu_ps(row);
-      const __m256 nearer =
-          _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), _mm256_castsi256_ps(covered));
-      _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
-      if (idb) {
-        float* idr = reinterpret_cast<float*>(idb + size_t(r) * stride);
-        _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
-      }
+      block_rows_avx2(lo, hi, dy, inside, plane_x_avx2(rw.z_dx, rw.ox + 8 * j), p, z_lo, z_hi, id,
+                      z + 8 * size_t(j), rw.ids ? rw.ids + 8 * size_t(j) : nullptr, stride);
     }
+    for (int k = 0; k < 3; ++k) e[k] += rw.block_step[k];
   }
 }
 
+// The rows of one block, AVX-512: ev holds each edge's 8 lanes at the first row; `lanes` the
+// lanes that are pixels (all but in a block cut by the viewport's right edge, whose other lanes
+// are neither read nor written). Covered lanes and the depth test are mask registers, stores are
+// masked; no branch on a row's coverage (as block_rows_avx2).
+SL_AVX512 inline void block_rows_avx512(__m512i* ev, const __m512i* dy, bool inside,
+                                        __mmask8 lanes, __m256 zx, const PlaneRows& p,
+                                        __m256 z_lo, __m256 z_hi, __m256i id, float* z,
+                                        uint32_t* ids, size_t stride) {
+  const __m512i zero = _mm512_setzero_si512();
+  for (int r = 0; r < p.rows; ++r) {
+    __mmask8 covered = lanes;
+    if (!inside) {
+      const __m512i any = _mm512_or_si512(_mm512_or_si512(ev[0], ev[1]), ev[2]);
+      covered = __mmask8(covered & _mm512_cmpge_epi64_mask(any, zero));
+      for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
+    }
+    const float zy = p.z0 + p.z_dy * float(p.oy + r);
+    const __m256 iw =
+        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+    float* row = z + size_t(r) * stride;
+    const __mmask8 nearer =
+        _mm256_mask_cmp_ps_mask(covered, iw, _mm256_maskz_loadu_ps(covered, row), _CMP_GT_OQ);
+    _mm256_mask_storeu_ps(row, nearer, iw);
+    if (ids) _mm256_mask_storeu_epi32(ids + size_t(r) * stride, nearer, id);
+  }
+}
 
-__attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_triangle_avx512_impl(
-    const TriangleSetup& s, int x0, int y0, int x1, int y1, float* z, uint32_t* ids,
-    size_t width) {
+// The AVX-512 form of the AVX2 kernel: each edge's 8 lanes in one register. The same integer
+// and IEEE float operations per lane (the plane value, its clamp, the > test), so the same bits
+// (tests/raster/depth_kernels_test.cpp).
+SL_AVX512 static void depth_block8_avx512_impl(const DepthBlock8& b, float* z, size_t stride) {
+  __m512i e[3], dy[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = _mm512_add_epi64(_mm512_set1_epi64(b.edge[k]), _mm512_loadu_si512(b.lane_x[k]));
+    dy[k] = _mm512_set1_epi64(b.step_y[k]);
+  }
+  block_rows_avx512(e, dy, b.inside, 0xFF, plane_x_avx2(b.z_dx, b.ox),
+                    {b.z0, b.z_dy, b.oy, b.rows}, _mm256_set1_ps(b.z_lo), _mm256_set1_ps(b.z_hi),
+                    _mm256_set1_epi32(int(b.id)), z, b.ids, stride);
+}
+
+// A triangle's whole walk in a tile (rasterize_depth_in_rect's, in registers) with
+// block_rows_avx512 per block; the lane offsets step_x · i once per triangle (vpmullq: the same
+// exact int64 products as lane_x).
+SL_AVX512 static void depth_triangle_avx512_impl(const TriangleSetup& s, int x0, int y0, int x1,
+                                                 int y1, float* z, uint32_t* ids, size_t width) {
   const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
   const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
   if (min_x > max_x || min_y > max_y) return;
@@ -305,17 +231,13 @@ __attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_triangle_
     lane[k] = _mm512_mullo_epi64(_mm512_set1_epi64(step_x[k]), iota);
     dy[k] = _mm512_set1_epi64(step_y[k]);
   }
-  const __m256i lane_i = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256 z_dx = _mm256_set1_ps(s.z_dx);
-  const float z0 = s.z0, z_dy = s.z_dy;
   const __m256 z_lo = _mm256_set1_ps(s.z_lo), z_hi = _mm256_set1_ps(s.z_hi);
   const __m256i id = _mm256_set1_epi32(int(s.triangle));
-  const __m512i zero = _mm512_setzero_si512();
   const int bx_start = min_x - (min_x - x0) % kBlock;
   const int by_start = min_y - (min_y - y0) % kBlock;
   for (int by = by_start; by <= max_y; by += kBlock) {
     const int py0 = std::max(by, min_y), py1 = std::min(by + kBlock - 1, max_y);
-    const int rows = py1 - py0 + 1, oy = py0 - s.min_y;
+    const PlaneRows p{s.z0, s.z_dy, py0 - s.min_y, py1 - py0 + 1};
     int64_t e[3], lo_off[3], hi_off[3];
     for (int k = 0; k < 3; ++k) {
       e[k] = s.a[k] * (int64_t(bx_start) * one + half) + s.b[k] * (int64_t(py0) * one + half) +
@@ -336,31 +258,14 @@ __attribute__((target("avx512f,avx512vl,avx512dq"))) static void depth_triangle_
           bx + kBlock > x1 ? __mmask8((1u << (x1 - bx)) - 1u) : __mmask8(0xFF);
       __m512i ev[3];
       for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(_mm512_set1_epi64(e[k]), lane[k]);
-      const __m256 x = _mm256_cvtepi32_ps(
-          _mm256_add_epi32(_mm256_set1_epi32(bx - s.min_x), lane_i));
-      const __m256 zx = _mm256_mul_ps(z_dx, x);  // z_dx * float(ox + i)
-      float* const zb = zrow + bx;
-      uint32_t* const idb = idrow ? idrow + bx : nullptr;
-      for (int r = 0; r < rows; ++r) {
-        __mmask8 covered = lanes;
-        if (!inside) {
-          const __m512i any = _mm512_or_si512(_mm512_or_si512(ev[0], ev[1]), ev[2]);
-          covered = __mmask8(covered & _mm512_cmpge_epi64_mask(any, zero));
-          for (int k = 0; k < 3; ++k) ev[k] = _mm512_add_epi64(ev[k], dy[k]);
-        }
-        const float zy = z0 + z_dy * float(oy + r);
-        const __m256 iw =
-            _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
-        float* row = zb + size_t(r) * width;
-        const __mmask8 nearer =
-            _mm256_mask_cmp_ps_mask(covered, iw, _mm256_maskz_loadu_ps(covered, row), _CMP_GT_OQ);
-        _mm256_mask_storeu_ps(row, nearer, iw);
-        if (idb) _mm256_mask_storeu_epi32(idb + size_t(r) * width, nearer, id);
-      }
+      block_rows_avx512(ev, dy, inside, lanes, plane_x_avx2(s.z_dx, bx - s.min_x), p, z_lo, z_hi,
+                        id, zrow + bx, idrow ? idrow + bx : nullptr, width);
     }
   }
 }
 
+#undef SL_AVX512
+#undef SL_AVX2
 #endif
 
 DepthTriangleFn depth_triangle_avx512() {
@@ -374,13 +279,6 @@ DepthTriangleFn depth_triangle_selected() {
   return depth_block8_selected() == depth_block8_avx512() ? depth_triangle_avx512() : nullptr;
 }
 
-DepthRow8Fn depth_row8_avx512() {
-#ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx512()) return depth_row8_avx512_impl;
-#endif
-  return nullptr;
-}
-
 DepthRow8Fn depth_row8_avx2() {
 #ifdef SHADOWLAB_HAVE_X86
   if (cpu_has_avx2()) return depth_row8_avx2_impl;
@@ -389,10 +287,10 @@ DepthRow8Fn depth_row8_avx2() {
 }
 
 DepthRow8Fn depth_row8_selected() {
-  const DepthBlock8Fn block = depth_block8_selected();
-  if (block == depth_block8_scalar) return depth_row8_scalar;
-  if (block == depth_block8_avx2()) return depth_row8_avx2();
-  return depth_row8_avx512();
+  // The AVX-512 path walks whole triangles (depth_triangle_avx512); rows of blocks in AVX2.
+  if (depth_block8_selected() == depth_block8_scalar) return depth_row8_scalar;
+  const DepthRow8Fn avx2 = depth_row8_avx2();
+  return avx2 ? avx2 : depth_row8_scalar;
 }
 
 DepthBlock8Fn depth_block8_avx512() {

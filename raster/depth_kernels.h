@@ -64,8 +64,8 @@ using DepthRow8Fn = void (*)(const DepthRow8& r, float* z, size_t stride);
 // Scalar reference: each block through depth_block8_scalar.
 void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride);
 DepthRow8Fn depth_row8_avx2();
-DepthRow8Fn depth_row8_avx512();
-// The variant of the same ISA as depth_block8_selected().
+// The scalar oracle when depth_block8_selected() is, else the AVX2 row (the AVX-512 path walks
+// whole triangles instead: depth_triangle_selected).
 DepthRow8Fn depth_row8_selected();
 
 inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {

@@ -153,11 +153,5 @@ TEST(DepthKernels, Avx2RowMatchesBruteForce) {
   expect_row_matches_brute_force(fast);
 }
 
-TEST(DepthKernels, Avx512RowMatchesBruteForce) {
-  const DepthRow8Fn fast = depth_row8_avx512();
-  if (!fast) GTEST_SKIP() << "no AVX-512 on this CPU";
-  expect_row_matches_brute_force(fast);
-}
-
 }  // namespace
 }  // namespace shadowlab
