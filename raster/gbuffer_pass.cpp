@@ -176,20 +176,15 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
               }
               const uint32_t run_mask = ((1u << k1) - 1u) & ~((1u << k) - 1u);
               resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.s, tri.q, tri.gn,
-                                   tri.e2q, n[0] ? n : nullptr, uv[0] ? uv : nullptr);
-              for (int kk = k; kk < k1; ++kk) {
-                g.mesh_id[i + size_t(kk)] = tri.m;
-                g.prim_id[i + size_t(kk)] = tri.p;
-                g.covered[i + size_t(kk)] = 1;
-              }
+                                   tri.e2q, n[0] ? n : nullptr, uv[0] ? uv : nullptr, tri.m,
+                                   tri.p);
             }
             k = k1;
           }
+          lanes_w.covered = covered;
           lanes16(run, lanes_w, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],
-                  &g.geo_normal[i], &g.uv[i], &g.depth[i]);
-          if (covered != 0xFFFFu)
-            for (int k = 0; k < 16; ++k)
-              if (!((covered >> k) & 1)) empty_pixel(i + size_t(k));
+                  &g.geo_normal[i], &g.uv[i], &g.depth[i], &g.mesh_id[i], &g.prim_id[i],
+                  &g.covered[i]);
           x += 15;
           continue;
         }

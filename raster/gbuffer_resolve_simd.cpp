@@ -218,7 +218,8 @@ SL_AVX512 inline __m512 absw(__m512 v) {
 // resolve8's operations on 16 lanes (compare masks where it blends).
 SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16& t, int x,
                                       int y, const float* inv_w, vec3* position, vec3* normal,
-                                      vec3* geo_normal, vec2* uv, float* depth_out) {
+                                      vec3* geo_normal, vec2* uv, float* depth_out,
+                                      uint32_t* mesh_id, uint32_t* prim_id, uint8_t* covered) {
   const __m512 zero = _mm512_setzero_ps(), one = bw(1.0f);
   const __m512 xs = _mm512_maskz_cvtepi32_ps(
       0xFFFF, _mm512_add_epi32(_mm512_set1_epi32(x), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8,
@@ -270,13 +271,23 @@ SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16
   const __mmask16 flip_s = _mm512_cmp_ps_mask(dotw(sn, gn), zero, _CMP_LT_OQ);
   sn = {_mm512_mask_xor_ps(sn.x, flip_s, sn.x, sign), _mm512_mask_xor_ps(sn.y, flip_s, sn.y, sign),
         _mm512_mask_xor_ps(sn.z, flip_s, sn.z, sign)};
-  store3w(position, pos);
-  store3w(normal, sn);
-  store3w(geo_normal, gn);
-  _mm512_storeu_ps(depth_out, depth);
-  if (t.has_uv) {
+  // Lanes showing no triangle: the empty values (+0 vectors, +inf depth, no ids).
+  const __mmask16 cov = __mmask16(t.covered);
+  store3w(position, {_mm512_maskz_mov_ps(cov, pos.x), _mm512_maskz_mov_ps(cov, pos.y),
+                     _mm512_maskz_mov_ps(cov, pos.z)});
+  store3w(normal, {_mm512_maskz_mov_ps(cov, sn.x), _mm512_maskz_mov_ps(cov, sn.y),
+                   _mm512_maskz_mov_ps(cov, sn.z)});
+  store3w(geo_normal, {_mm512_maskz_mov_ps(cov, gn.x), _mm512_maskz_mov_ps(cov, gn.y),
+                       _mm512_maskz_mov_ps(cov, gn.z)});
+  _mm512_storeu_ps(depth_out, _mm512_mask_blend_ps(cov, bw(__builtin_inff()), depth));
+  const __m512i none = _mm512_set1_epi32(-1);
+  _mm512_storeu_si512(mesh_id, _mm512_mask_blend_epi32(cov, none, _mm512_load_si512(t.mesh)));
+  _mm512_storeu_si512(prim_id, _mm512_mask_blend_epi32(cov, none, _mm512_load_si512(t.prim)));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(covered),
+                   _mm512_maskz_cvtepi32_epi8(0xFFFF, _mm512_maskz_mov_epi32(cov, _mm512_set1_epi32(1))));
+  if (t.has_uv & t.covered) {
     alignas(64) float tu[16], tv[16];
-    const __mmask16 has = __mmask16(t.has_uv);
+    const __mmask16 has = __mmask16(t.has_uv & t.covered);
     _mm512_store_ps(tu, _mm512_maskz_mov_ps(has, interpw(l0, l1, l2, _mm512_load_ps(t.uv[0][0]),
                                                            _mm512_load_ps(t.uv[1][0]),
                                                            _mm512_load_ps(t.uv[2][0]))));
@@ -297,8 +308,11 @@ SL_AVX512 inline void put3(float (*dst)[16], __mmask16 m, const vec3& v) {
 
 SL_AVX512 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1,
                                     const vec3& e2, const vec3& s, const vec3& q, const vec3& gn,
-                                    float e2q, const vec3* const* n, const vec2* const* uv) {
+                                    float e2q, const vec3* const* n, const vec2* const* uv,
+                                    uint32_t mesh, uint32_t prim) {
   const __mmask16 m = __mmask16(mask);
+  _mm512_mask_storeu_epi32(l.mesh, m, _mm512_set1_epi32(int(mesh)));
+  _mm512_mask_storeu_epi32(l.prim, m, _mm512_set1_epi32(int(prim)));
   put3(l.e1, m, e1);
   put3(l.e2, m, e2);
   put3(l.s, m, s);
@@ -337,7 +351,8 @@ ResolveRun8Fn resolve_run8_simd() {
 
 #ifndef SHADOWLAB_HAVE_X86
 void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, const vec3&,
-                          const vec3&, const vec3&, float, const vec3* const*, const vec2* const*) {}
+                          const vec3&, const vec3&, float, const vec3* const*, const vec2* const*,
+                          uint32_t, uint32_t) {}
 #endif
 
 ResolveLanes16Fn resolve_lanes16_simd() {

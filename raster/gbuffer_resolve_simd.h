@@ -52,17 +52,23 @@ struct ResolveLanes16 {
   alignas(64) float e1[3][16], e2[3][16], s[3][16], q[3][16], gn[3][16], e2q[16];
   alignas(64) float n[3][3][16];   // vertex k's normal, component c, lane
   alignas(64) float uv[3][2][16];  // vertex k's uv
+  alignas(64) uint32_t mesh[16], prim[16];  // the lane's mesh and triangle index in it
   uint32_t has_n = 0, has_uv = 0;  // bit k: lane k's mesh has normals (uvs)
+  uint32_t covered = 0;            // bit k: lane k shows a triangle (else its empty values)
 };
+// Writes all 16 pixels' layers: the covered lanes' resolve, the others' empty values (position,
+// normals and uv 0, depth +inf, ids kNoPrimitive, covered 0), as the scalar resolve does.
 using ResolveLanes16Fn = void (*)(const ResolveRun8& camera, const ResolveLanes16& lanes, int x,
                                   int y, const float* inv_w, vec3* position, vec3* normal,
-                                  vec3* geo_normal, vec2* uv, float* depth);
+                                  vec3* geo_normal, vec2* uv, float* depth, uint32_t* mesh_id,
+                                  uint32_t* prim_id, uint8_t* covered);
 // The AVX-512 path (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced.
 ResolveLanes16Fn resolve_lanes16_simd();
 // Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term (n, uv:
 // the vertices' normals and uvs, nullptr where the mesh has none). Only with the path above.
 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1, const vec3& e2,
                           const vec3& s, const vec3& q, const vec3& gn, float e2q,
-                          const vec3* const* n, const vec2* const* uv);
+                          const vec3* const* n, const vec2* const* uv, uint32_t mesh,
+                          uint32_t prim);
 
 }  // namespace shadowlab
