@@ -12,62 +12,46 @@
 
 namespace shadowlab {
 
-void depth_block8_scalar(const DepthBlock8& b, float* z, size_t stride) {
-  int64_t row[3] = {b.edge[0], b.edge[1], b.edge[2]};
-  for (int r = 0; r < b.rows; ++r) {
-    const float zy = b.z0 + b.z_dy * float(b.oy + r);
-    float* zr = z + size_t(r) * stride;
-    uint32_t* idr = b.ids ? b.ids + size_t(r) * stride : nullptr;
-    int64_t e0 = row[0], e1 = row[1], e2 = row[2];
-    for (int i = 0; i < 8; ++i) {
-      if ((e0 | e1 | e2) >= 0) {
-        const float iw = std::min(std::max(zy + b.z_dx * float(b.ox + i), b.z_lo), b.z_hi);
-        if (iw > zr[i]) {
-          zr[i] = iw;
-          if (idr) idr[i] = b.id;
-        }
-      }
-      e0 += b.step_x[0];
-      e1 += b.step_x[1];
-      e2 += b.step_x[2];
-    }
-    for (int k = 0; k < 3; ++k) row[k] += b.step_y[k];
-  }
+namespace {
+
+enum class DepthIsa { Scalar, Avx2, Avx512 };
+
+DepthIsa depth_isa() {
+  static const DepthIsa isa = use_avx512_paths() ? DepthIsa::Avx512
+                              : use_avx2_paths() ? DepthIsa::Avx2
+                                                 : DepthIsa::Scalar;
+  return isa;
 }
 
-namespace {
-// Block j's skip and whole-coverage tests, and its DepthBlock8 (edge values at its origin).
+// Block j's skip and whole-coverage tests (edge values e at its first pixel).
 bool row_block(const DepthRow8& r, const int64_t* e, bool& inside) {
   if (e[0] + r.hi_off[0] < 0 || e[1] + r.hi_off[1] < 0 || e[2] + r.hi_off[2] < 0) return false;
   inside = e[0] + r.lo_off[0] >= 0 && e[1] + r.lo_off[1] >= 0 && e[2] + r.lo_off[2] >= 0;
   return true;
 }
+
 }  // namespace
 
 void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride) {
-  DepthBlock8 b;
-  for (int k = 0; k < 3; ++k) {
-    b.step_x[k] = r.step_x[k];
-    b.step_y[k] = r.step_y[k];
-    for (int i = 0; i < 8; ++i) b.lane_x[k][i] = r.step_x[k] * i;
-  }
-  b.z0 = r.z0;
-  b.z_dx = r.z_dx;
-  b.z_dy = r.z_dy;
-  b.z_lo = r.z_lo;
-  b.z_hi = r.z_hi;
-  b.oy = r.oy;
-  b.rows = r.rows;
-  b.id = r.id;
-  int64_t e[3] = {r.edge[0], r.edge[1], r.edge[2]};
   for (int j = 0; j < r.blocks; ++j) {
-    if (row_block(r, e, b.inside)) {
-      for (int k = 0; k < 3; ++k) b.edge[k] = e[k];
-      b.ox = r.ox + 8 * j;
-      b.ids = r.ids ? r.ids + 8 * size_t(j) : nullptr;
-      depth_block8_scalar(b, z + 8 * size_t(j), stride);
+    float* const zb = z + 8 * size_t(j);
+    uint32_t* const idb = r.ids ? r.ids + 8 * size_t(j) : nullptr;
+    const int ox = r.ox + 8 * j;
+    for (int row = 0; row < r.rows; ++row) {
+      const float zy = r.z0 + r.z_dy * float(r.oy + row);
+      float* const zr = zb + size_t(row) * stride;
+      int64_t e[3];
+      for (int k = 0; k < 3; ++k)
+        e[k] = r.edge[k] + r.block_step[k] * j + r.step_y[k] * int64_t(row);
+      for (int i = 0; i < 8; ++i, e[0] += r.step_x[0], e[1] += r.step_x[1], e[2] += r.step_x[2]) {
+        if ((e[0] | e[1] | e[2]) < 0) continue;
+        const float iw = std::min(std::max(zy + r.z_dx * float(ox + i), r.z_lo), r.z_hi);
+        if (iw > zr[i]) {
+          zr[i] = iw;
+          if (idb) idb[size_t(row) * stride + size_t(i)] = r.id;
+        }
+      }
     }
-    for (int k = 0; k < 3; ++k) e[k] += r.block_step[k];
   }
 }
 
@@ -123,19 +107,6 @@ SL_AVX2 inline void block_rows_avx2(__m256i* lo, __m256i* hi, const __m256i* dy,
       _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
     }
   }
-}
-
-SL_AVX2 static void depth_block8_avx2_impl(const DepthBlock8& b, float* z, size_t stride) {
-  __m256i lo[3], hi[3], dy[3];
-  for (int k = 0; k < 3; ++k) {
-    const __m256i e = _mm256_set1_epi64x(b.edge[k]);
-    lo[k] = _mm256_add_epi64(e, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b.lane_x[k])));
-    hi[k] = _mm256_add_epi64(e, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b.lane_x[k] + 4)));
-    dy[k] = _mm256_set1_epi64x(b.step_y[k]);
-  }
-  block_rows_avx2(lo, hi, dy, b.inside, plane_x_avx2(b.z_dx, b.ox), {b.z0, b.z_dy, b.oy, b.rows},
-                  _mm256_set1_ps(b.z_lo), _mm256_set1_ps(b.z_hi),
-                  _mm256_castsi256_ps(_mm256_set1_epi32(int(b.id))), z, b.ids, stride);
 }
 
 // The AVX2 row of blocks: block_rows_avx2 per block, the lane offsets step_x · i made once per
@@ -194,20 +165,6 @@ SL_AVX512 inline void block_rows_avx512(__m512i* ev, const __m512i* dy, bool ins
     _mm256_mask_storeu_ps(row, nearer, iw);
     if (ids) _mm256_mask_storeu_epi32(ids + size_t(r) * stride, nearer, id);
   }
-}
-
-// The AVX-512 form of the AVX2 kernel: each edge's 8 lanes in one register. The same integer
-// and IEEE float operations per lane (the plane value, its clamp, the > test), so the same bits
-// (tests/raster/depth_kernels_test.cpp).
-SL_AVX512 static void depth_block8_avx512_impl(const DepthBlock8& b, float* z, size_t stride) {
-  __m512i e[3], dy[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = _mm512_add_epi64(_mm512_set1_epi64(b.edge[k]), _mm512_loadu_si512(b.lane_x[k]));
-    dy[k] = _mm512_set1_epi64(b.step_y[k]);
-  }
-  block_rows_avx512(e, dy, b.inside, 0xFF, plane_x_avx2(b.z_dx, b.ox),
-                    {b.z0, b.z_dy, b.oy, b.rows}, _mm256_set1_ps(b.z_lo), _mm256_set1_ps(b.z_hi),
-                    _mm256_set1_epi32(int(b.id)), z, b.ids, stride);
 }
 
 // A triangle's whole walk in a tile (rasterize_depth_in_rect's, in registers) with
@@ -276,7 +233,7 @@ DepthTriangleFn depth_triangle_avx512() {
 }
 
 DepthTriangleFn depth_triangle_selected() {
-  return depth_block8_selected() == depth_block8_avx512() ? depth_triangle_avx512() : nullptr;
+  return depth_isa() == DepthIsa::Avx512 ? depth_triangle_avx512() : nullptr;
 }
 
 DepthRow8Fn depth_row8_avx2() {
@@ -288,35 +245,17 @@ DepthRow8Fn depth_row8_avx2() {
 
 DepthRow8Fn depth_row8_selected() {
   // The AVX-512 path walks whole triangles (depth_triangle_avx512); rows of blocks in AVX2.
-  if (depth_block8_selected() == depth_block8_scalar) return depth_row8_scalar;
-  const DepthRow8Fn avx2 = depth_row8_avx2();
+  const DepthRow8Fn avx2 = depth_isa() == DepthIsa::Scalar ? nullptr : depth_row8_avx2();
   return avx2 ? avx2 : depth_row8_scalar;
 }
 
-DepthBlock8Fn depth_block8_avx512() {
-#ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx512()) return depth_block8_avx512_impl;
-#endif
-  return nullptr;
-}
-
-DepthBlock8Fn depth_block8_avx2() {
-#ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx2()) return depth_block8_avx2_impl;
-#endif
-  return nullptr;
-}
-
-DepthBlock8Fn depth_block8_selected() {
-  if (use_avx512_paths())
-    if (const DepthBlock8Fn f = depth_block8_avx512()) return f;
-  const DepthBlock8Fn fast = use_avx2_paths() ? depth_block8_avx2() : nullptr;
-  return fast ? fast : depth_block8_scalar;
-}
-
 const char* depth_kernel_name() {
-  const DepthBlock8Fn f = depth_block8_selected();
-  return f == depth_block8_scalar ? "scalar" : f == depth_block8_avx2() ? "avx2" : "avx512";
+  switch (depth_isa()) {
+    case DepthIsa::Avx512: return "avx512";
+    case DepthIsa::Avx2: return "avx2";
+    case DepthIsa::Scalar: break;
+  }
+  return "scalar";
 }
 
 }  // namespace shadowlab

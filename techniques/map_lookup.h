@@ -57,42 +57,53 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
   const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? pcf_simd() : nullptr;
   lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
     size_t i = b;
-    // A batch that takes several groups at a time (Batch::kGroups, when its grouped() says so)
-    // gets kGroups 8-pixel groups per call, the next call's receivers computed and prefetched
-    // ahead; the loop below takes what is left (fewer than 8 · kGroups pixels).
-    if constexpr (requires { Batch::kGroups; }) {
-      constexpr int G = Batch::kGroups;
+    // The batch's pixels, G groups of 8 per call, from i on while G groups remain (returns the
+    // first pixel not done): the next call's receivers computed and their map rows prefetched
+    // (Batch::prefetch) ahead, so the current reconstruction overlaps the next one's memory
+    // reads; the inactive lanes' masks merged in one vector step. G = 1 calls
+    // batch(consts, receivers, first_pixel, out); G > 1 batch.groups(consts, receivers, out).
+    auto run_batches = [&]<int G>(size_t from) {
       constexpr size_t span = 8 * size_t(G);
-      if (!depth1 && !pcf && batch.grouped()) {
-        auto group = [&](size_t at, Receivers8& r) {
-          receivers8(c, &g.position[at].x, &g.geo_normal[at].x, &g.covered[at], r);
-        };
-        Receivers8 cur[G], ahead[G];
-        bool have_ahead = false;
-        for (; i + span <= e; i += span) {
-          for (int h = 0; h < G; ++h) {
-            if (have_ahead)
-              cur[h] = ahead[h];
-            else
-              group(i + 8 * size_t(h), cur[h]);
-          }
-          have_ahead = i + 2 * span <= e;
+      auto group = [&](size_t at, Receivers8& r) {
+        receivers8(c, &g.position[at].x, &g.geo_normal[at].x, &g.covered[at], r);
+      };
+      Receivers8 cur[G], ahead[G];
+      bool have_ahead = false;
+      size_t at = from;
+      for (; at + span <= e; at += span) {
+        for (int h = 0; h < G; ++h) {
           if (have_ahead)
-            for (int h = 0; h < G; ++h) {
-              group(i + span + 8 * size_t(h), ahead[h]);
-              batch.prefetch(c, ahead[h]);
-            }
-          alignas(32) float vis[G][8];
-          batch.groups(c, cur, vis);
+            cur[h] = ahead[h];
+          else
+            group(at + 8 * size_t(h), cur[h]);
+        }
+        have_ahead = at + 2 * span <= e;
+        if (have_ahead)
           for (int h = 0; h < G; ++h) {
-            const size_t at = i + 8 * size_t(h);
-            merge8(cur[h], vis[h], &mask.data[at], texels ? &texels->data[at] : nullptr);
+            group(at + span + 8 * size_t(h), ahead[h]);
+            batch.prefetch(c, ahead[h]);
           }
+        alignas(32) float vis[G][8];
+        if constexpr (G == 1)
+          batch(c, cur[0], at, vis[0]);
+        else
+          batch.groups(c, cur, vis);
+        for (int h = 0; h < G; ++h) {
+          const size_t px = at + 8 * size_t(h);
+          merge8(cur[h], vis[h], &mask.data[px], texels ? &texels->data[px] : nullptr);
         }
       }
+      return at;
+    };
+    if constexpr (Batch::kEnabled) {
+      if (!depth1 && !pcf) {
+        // A batch that takes several groups at a time (Batch::kGroups, when its grouped()
+        // says so) gets them, then single groups for what is left.
+        if constexpr (requires { Batch::kGroups; })
+          if (batch.grouped()) i = run_batches.template operator()<Batch::kGroups>(i);
+        i = run_batches.template operator()<1>(i);
+      }
     }
-    Receivers8 next;
-    bool have_next = false;
     for (; i + 8 <= e; i += 8) {
       const float* pos = &g.position[i].x;
       const float* nrm = &g.geo_normal[i].x;
@@ -106,24 +117,6 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
       if (pcf) {
         pcf(c, p.pcf, pos, nrm, &g.covered[i], m, t, r);
       } else {
-        if constexpr (Batch::kEnabled) {
-          // Receivers one batch ahead, with their map rows prefetched (Batch::prefetch), so
-          // the current batch's reconstruction overlaps the next one's memory reads.
-          if (have_next)
-            r = next;
-          else
-            receivers8(c, pos, nrm, &g.covered[i], r);
-          have_next = i + 16 <= e;
-          if (have_next) {
-            receivers8(c, &g.position[i + 8].x, &g.geo_normal[i + 8].x, &g.covered[i + 8], next);
-            batch.prefetch(c, next);
-          }
-          // The batch's lanes and the inactive lanes' masks in one vector step.
-          alignas(32) float vis[8];
-          batch(c, r, i, vis);
-          merge8(r, vis, m, t);
-          continue;
-        }
         receivers8(c, pos, nrm, &g.covered[i], r);
         for (int k = 0; k < 8; ++k) {
           m[k] = r.mask[k];

@@ -377,10 +377,12 @@ SL_ROW_CLONES void vsm_out_k(const double* const* rows, int w, double inv, float
 // Texels to write one by one before out + S·x starts a 64-byte line (S floats per texel), so the
 // vector stores after them do not straddle cache lines: large vectors' storage is 16-byte
 // aligned here (glibc's mmap chunks), and a 64-byte store across two lines costs about two.
-inline int texels_to_line(const float* out, int floats_per_texel, int w) {
+// A row whose texels never start a line returns `unreachable`: 0 for ordinary stores (they may
+// straddle), w where the stores need aligned addresses (then every texel goes one by one).
+inline int texels_to_line(const float* out, int floats_per_texel, int w, int unreachable = 0) {
   const uintptr_t bytes = (64 - (reinterpret_cast<uintptr_t>(out) & 63)) & 63;
   const uintptr_t texel_bytes = uintptr_t(floats_per_texel) * 4;
-  if (bytes % texel_bytes != 0) return 0;
+  if (bytes % texel_bytes != 0) return unreachable;
   return std::min(w, int(bytes / texel_bytes));
 }
 
@@ -515,6 +517,21 @@ SL_ROW_CLONES void mean_out_k(const double* const* rows, int w, double inv, floa
 }
 
 #if defined(__x86_64__)
+// rows[0][x] + rows[1][x] + … + rows[K − 1][x], added in row order (mean_out_k's sum), for one
+// texel and for 8 (AVX-512): the output kernels' sums of K filtered rows.
+template <int K>
+inline double sum_rows(const double* const* rows, int x) {
+  double a = rows[0][x];
+  for (int j = 1; j < K; ++j) a += rows[j][x];
+  return a;
+}
+template <int K>
+__attribute__((target("avx512f"))) inline __m512d sum_rows8(const double* const* rows, int x) {
+  __m512d a = _mm512_loadu_pd(rows[0] + x);
+  for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(rows[j] + x));
+  return a;
+}
+
 // VSM's (and EVSM's two-value) output row straight into the interleaved plane: vsm_out_k's sums,
 // products and positive part for both planes (rows[0 .. K − 1] the first moments', rows[K ..
 // 2K − 1] the second's), 8 texels at a time, zipped to (mean, variance) per texel and stored as
@@ -527,13 +544,7 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
                                                                    int w, double inv,
                                                                    float* out) {
   auto one = [&](int x) {
-    double a = rows[0][x], b = rows[K][x];
-    for (int j = 1; j < K; ++j) {
-      a += rows[j][x];
-      b += rows[K + j][x];
-    }
-    a *= inv;
-    b *= inv;
+    const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
     out[2 * x] = float(a);
     out[2 * x + 1] = float(positive_part(b - a * a));
   };
@@ -542,13 +553,8 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
   for (; x < head; ++x) one(x);
   const __m512d vinv = _mm512_set1_pd(inv), zero = _mm512_setzero_pd();
   for (; x + 8 <= w; x += 8) {
-    __m512d a = _mm512_loadu_pd(rows[0] + x), b = _mm512_loadu_pd(rows[K] + x);
-    for (int j = 1; j < K; ++j) {
-      a = _mm512_add_pd(a, _mm512_loadu_pd(rows[j] + x));
-      b = _mm512_add_pd(b, _mm512_loadu_pd(rows[K + j] + x));
-    }
-    a = _mm512_mul_pd(a, vinv);
-    b = _mm512_mul_pd(b, vinv);
+    const __m512d a = _mm512_mul_pd(sum_rows8<K>(rows, x), vinv);
+    const __m512d b = _mm512_mul_pd(sum_rows8<K>(rows + K, x), vinv);
     const __m512d v = _mm512_sub_pd(b, _mm512_mul_pd(a, a));
     // positive_part: v where v > 0, else +0 (a NaN too).
     const __m512d pv = _mm512_mask_mov_pd(zero, _mm512_cmp_pd_mask(v, zero, _CMP_GT_OQ), v);
@@ -575,27 +581,18 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const double*
                                                                    int w, double inv,
                                                                    float* out) {
   auto one = [&](int x) {
-    for (int c = 0; c < 4; ++c) {
-      double a = rows[c * K][x];
-      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
-      a *= inv;
-      out[4 * x + c] = float(a);
-    }
+    for (int c = 0; c < 4; ++c) out[4 * x + c] = float(sum_rows<K>(rows + c * K, x) * inv);
   };
-  const uintptr_t to_line = (64 - (reinterpret_cast<uintptr_t>(out) & 63)) & 63;
-  // A row that cannot reach a line on a texel boundary (never for the map's 16-byte aligned
-  // storage) goes one texel at a time.
-  const int head = to_line % 16 == 0 ? std::min(w, int(to_line / 16)) : w;
+  // Non-temporal stores need aligned addresses: a row that cannot reach a line on a texel
+  // boundary (never for the map's 16-byte aligned storage) goes one texel at a time.
+  const int head = texels_to_line(out, 4, w, w);
   int x = 0;
   for (; x < head; ++x) one(x);
   const __m512d vinv = _mm512_set1_pd(inv);
   for (; x + 8 <= w; x += 8) {
     __m256 m[4];
-    for (int c = 0; c < 4; ++c) {
-      __m512d a = _mm512_loadu_pd(rows[c * K] + x);
-      for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(rows[c * K + j] + x));
-      m[c] = _mm512_maskz_cvtpd_ps(0xFF, _mm512_mul_pd(a, vinv));
-    }
+    for (int c = 0; c < 4; ++c)
+      m[c] = _mm512_maskz_cvtpd_ps(0xFF, _mm512_mul_pd(sum_rows8<K>(rows + c * K, x), vinv));
     const __m256 m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
     // t0 = texels 0 1 | 4 5 of planes 0 1 interleaved; t2 the same of planes 2 3; t1, t3: 2 3 | 6 7.
     const __m256 t0 = _mm256_unpacklo_ps(m0, m1), t1 = _mm256_unpackhi_ps(m0, m1);
