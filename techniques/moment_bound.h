@@ -18,7 +18,7 @@
 // A G that is not a number (a singular B: α = 0 over a footprint of one depth) counts as 0, as
 // a GPU's saturate() does: the pixel is lit. α = 0 is allowed so that this leak can be measured.
 //
-// The scalar functions are the oracle; msm_intensity4 and msm_intensity8 compute 4 and 8 lanes
+// The scalar functions are the oracle; msm_intensity4n and msm_intensity8n compute groups of 4 and 8 lanes
 // with the same operations in the same order (selects as compare-and-blend), so they give
 // their bits.
 #include <cmath>
@@ -198,16 +198,8 @@ SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z,
   }
 }
 
-// One group of 4 lanes.
-SL_MSM_AVX2 inline __m256d msm_intensity4(const __m256d m[4], __m256d z, double alpha,
-                                          bool hausdorff) {
-  const __m256d group[1][4] = {{m[0], m[1], m[2], m[3]}};
-  __m256d g;
-  msm_intensity4n<1>(group, &z, alpha, hausdorff, &g);
-  return g;
-}
 
-// msm_intensity for N groups of 8 lanes (AVX-512 F and DQ): msm_intensity4's operations with
+// msm_intensity for N groups of 8 lanes (AVX-512 F and DQ): msm_intensity4n's operations with
 // compare masks for its blends, so each lane gets the scalar bits; a division costs the same per
 // instruction as in AVX2 on the machines we measure (AMD EPYC: ~1.15 ns either way), so 8 lanes
 // halve the six divisions' share of the MSM lookup. The chain of divisions and the square root is
@@ -290,14 +282,6 @@ SL_MSM_AVX512 inline void msm_intensity8n(const __m512d (*m)[4], const __m512d* 
   }
 }
 
-// One group of 8 lanes.
-SL_MSM_AVX512 inline __m512d msm_intensity8(const __m512d m[4], __m512d z, double alpha,
-                                            bool hausdorff) {
-  const __m512d group[1][4] = {{m[0], m[1], m[2], m[3]}};
-  __m512d g;
-  msm_intensity8n<1>(group, &z, alpha, hausdorff, &g);
-  return g;
-}
 #undef SL_MSM_AVX512
 #undef SL_MSM_AVX2
 #endif

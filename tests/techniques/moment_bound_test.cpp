@@ -211,9 +211,11 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
 // The kernels on lanes m[k][lane] (moment k + 1), z[lane].
 __attribute__((target("avx2"))) void intensity4(const double (*m)[32], const double* z,
                                                 double alpha, bool hausdorff, double* out) {
-  __m256d mv[4];
-  for (int k = 0; k < 4; ++k) mv[k] = _mm256_loadu_pd(m[k]);
-  _mm256_storeu_pd(out, msm_intensity4(mv, _mm256_loadu_pd(z), alpha, hausdorff));
+  __m256d mv[1][4], g;
+  for (int k = 0; k < 4; ++k) mv[0][k] = _mm256_loadu_pd(m[k]);
+  const __m256d zv = _mm256_loadu_pd(z);
+  msm_intensity4n<1>(mv, &zv, alpha, hausdorff, &g);
+  _mm256_storeu_pd(out, g);
 }
 // Two groups of 4 side by side (msm_intensity4n<2>, the AVX2 batch's halves).
 __attribute__((target("avx2"))) void intensity4x2(const double (*m)[32], const double* z,
@@ -229,9 +231,11 @@ __attribute__((target("avx2"))) void intensity4x2(const double (*m)[32], const d
 __attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[32],
                                                             const double* z, double alpha,
                                                             bool hausdorff, double* out) {
-  __m512d mv[4];
-  for (int k = 0; k < 4; ++k) mv[k] = _mm512_loadu_pd(m[k]);
-  _mm512_storeu_pd(out, msm_intensity8(mv, _mm512_loadu_pd(z), alpha, hausdorff));
+  __m512d mv[1][4], g;
+  for (int k = 0; k < 4; ++k) mv[0][k] = _mm512_loadu_pd(m[k]);
+  const __m512d zv = _mm512_loadu_pd(z);
+  msm_intensity8n<1>(mv, &zv, alpha, hausdorff, &g);
+  _mm512_storeu_pd(out, g);
 }
 // Four groups of 8 side by side (msm_intensity8n<4>, the MSM lookup's groups of batches).
 __attribute__((target("avx512f,avx512dq"))) void intensity8x4(const double (*m)[32],
