@@ -750,6 +750,26 @@ void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float*
   }
 }
 
+// Row y's filtered mean and variance from its window of K rows of each plane's horizontal sums
+// (vsm_out_k's operations): straight into the interleaved plane by vsm_out_interleaved_avx512
+// where the plane interleaves two values and AVX-512 is in use (fused512), else through
+// write_mean_var.
+template <int K>
+void vsm_out_row(const MeanVarOut& o, int w, int y, const SpanCols& s, const double* const* win,
+                 double* scratch, double inv, bool fused512) {
+#if defined(__x86_64__)
+  if (o.stride == 2 && fused512) {
+    vsm_out_interleaved_avx512<K>(win, s.n, inv,
+                                  o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
+    return;
+  }
+#else
+  (void)fused512;
+#endif
+  write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
+                 [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
+}
+
 // Filtered mean and centred variance of a two-plane row maker: make_row(y, cols, ext) fills
 // plane 0 at ext and plane 1 at ext + (w + k − 1) with the span's extended row (cols.n + k − 1
 // values: SpanCols).
@@ -773,15 +793,7 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
               hsum_k<K>(ext + ew, s.n, dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-#if defined(__x86_64__)
-              if (o.stride == 2 && fused512) {
-                vsm_out_interleaved_avx512<K>(
-                    win, s.n, inv, o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
-                return;
-              }
-#endif
-              write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
-                             [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
+              vsm_out_row<K>(o, w, y, s, win, scratch, inv, fused512);
             });
       }))
     return;
@@ -824,15 +836,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
               hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-#if defined(__x86_64__)
-              if (o.stride == 2 && fused512) {
-                vsm_out_interleaved_avx512<K>(
-                    win, s.n, inv, o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
-                return;
-              }
-#endif
-              write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
-                             [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
+              vsm_out_row<K>(o, w, y, s, win, scratch, inv, fused512);
             });
       }))
     return;
