@@ -28,6 +28,18 @@ struct NoBatch {
   void prefetch(const MapLookupConsts&, const Receivers8&) const {}
 };
 
+// One call of a batch on G groups: batch(consts, receivers, first_pixel, out) for G = 1,
+// batch.groups(consts, receivers, out) for more (the batch's type a template parameter, so the
+// branch not taken is not instantiated).
+template <int G, class Batch>
+inline void call_batch(const Batch& batch, const MapLookupConsts& c, const Receivers8* r,
+                       size_t first, float (*out)[8]) {
+  if constexpr (G == 1)
+    batch(c, r[0], first, out[0]);
+  else
+    batch.groups(c, r, out);
+}
+
 // Runs `visibility(receiver)` for every looked-up pixel: with no normal offset, the receivers
 // of 8 pixels at a time come from the AVX2 kernel, and depth compare runs its one-tap or N×N
 // compare in vector form too (footprints inside a face); the scalar loop takes the rest.
@@ -84,10 +96,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
             batch.prefetch(c, ahead[h]);
           }
         alignas(32) float vis[G][8];
-        if constexpr (G == 1)
-          batch(c, cur[0], at, vis[0]);
-        else
-          batch.groups(c, cur, vis);
+        call_batch<G>(batch, c, cur, at, vis);
         for (int h = 0; h < G; ++h) {
           const size_t px = at + 8 * size_t(h);
           merge8(cur[h], vis[h], &mask.data[px], texels ? &texels->data[px] : nullptr);
