@@ -156,16 +156,17 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           // triangle filled at once), the same bits as the code below; then the empty lanes.
           const uint32_t* ids = &vis.ids[i];
           uint32_t covered = 0;
-          for (int k = 0; k < 16; ++k) covered |= uint32_t(ids[k] != kNoPrimitive) << k;
+          uint32_t starts = resolve_lanes16_runs(ids, &covered);
           if (covered == 0) {
             for (int k = 0; k < 16; ++k) empty_pixel(i + size_t(k));
             x += 15;
             continue;
           }
-          for (int k = 0; k < 16;) {
+          // Run by run, from the runs' first pixels (no loop over a run's pixels).
+          for (int k = __builtin_ctz(starts); starts != 0; k = __builtin_ctz(starts)) {
+            starts &= starts - 1u;
+            const int k1 = starts ? __builtin_ctz(starts) : 16;
             const uint32_t tk = ids[k];
-            int k1 = k + 1;
-            while (k1 < 16 && ids[k1] == tk) ++k1;
             if (tk != kNoPrimitive) {
               load_triangle(tk);
               const vec3* n[3];
@@ -179,7 +180,6 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
                                    tri.e2q, n[0] ? n : nullptr, uv[0] ? uv : nullptr, tri.m,
                                    tri.p);
             }
-            k = k1;
           }
           lanes_w.covered = covered;
           lanes16(run, lanes_w, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],

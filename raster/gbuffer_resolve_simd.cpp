@@ -306,6 +306,14 @@ SL_AVX512 inline void put3(float (*dst)[16], __mmask16 m, const vec3& v) {
 
 }  // namespace
 
+SL_AVX512 uint32_t resolve_lanes16_runs(const uint32_t* ids, uint32_t* covered) {
+  const __m512i v = _mm512_loadu_si512(ids);
+  *covered = _mm512_cmpneq_epi32_mask(v, _mm512_set1_epi32(int(kNoPrimitive)));
+  // Lane k against lane k − 1 (lane 0 against lane 15: bit 0 is set below whatever it gives).
+  const __m512i prev = _mm512_maskz_alignr_epi32(0xFFFF, v, v, 15);
+  return uint32_t(_mm512_cmpneq_epi32_mask(v, prev)) | 1u;
+}
+
 SL_AVX512 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1,
                                     const vec3& e2, const vec3& s, const vec3& q, const vec3& gn,
                                     float e2q, const vec3* const* n, const vec2* const* uv,
@@ -350,6 +358,10 @@ ResolveRun8Fn resolve_run8_simd() {
 }
 
 #ifndef SHADOWLAB_HAVE_X86
+uint32_t resolve_lanes16_runs(const uint32_t*, uint32_t* covered) {
+  *covered = 0;
+  return 0;
+}
 void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, const vec3&,
                           const vec3&, const vec3&, float, const vec3* const*, const vec2* const*,
                           uint32_t, uint32_t) {}

@@ -64,6 +64,10 @@ using ResolveLanes16Fn = void (*)(const ResolveRun8& camera, const ResolveLanes1
                                   uint32_t* prim_id, uint8_t* covered);
 // The AVX-512 path (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced.
 ResolveLanes16Fn resolve_lanes16_simd();
+// The first pixels of the runs of equal ids among ids[0 .. 15] (bit k: ids[k] != ids[k − 1];
+// bit 0 always set), and in *covered the pixels that show a triangle (ids[k] != kNoPrimitive).
+// Only with the path above.
+uint32_t resolve_lanes16_runs(const uint32_t* ids, uint32_t* covered);
 // Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term (n, uv:
 // the vertices' normals and uvs, nullptr where the mesh has none). Only with the path above.
 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1, const vec3& e2,
