@@ -136,14 +136,16 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
 
 // out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
 // texels on each side).
-SL_ROW_CLONES void hsum_row(const double* ext, int w, int k, double* out) {
-  for (int x = 0; x < w; ++x) out[x] = 0.0;
+template <class T>
+SL_ROW_CLONES void hsum_row(const T* ext, int w, int k, T* out) {
+  for (int x = 0; x < w; ++x) out[x] = T(0);
   for (int i = 0; i < k; ++i)
     for (int x = 0; x < w; ++x) out[x] += ext[x + i];
 }
 
 // dst[x] = (rows[0][x] + rows[1][x] + … + rows[k-1][x]) × inv, added in row order.
-SL_ROW_CLONES void vsum_rows(const double* const* rows, int w, int k, double inv, double* dst) {
+template <class T>
+SL_ROW_CLONES void vsum_rows(const T* const* rows, int w, int k, T inv, T* dst) {
   for (int x = 0; x < w; ++x) dst[x] = rows[0][x];
   for (int j = 1; j < k; ++j)
     for (int x = 0; x < w; ++x) dst[x] += rows[j][x];
@@ -277,21 +279,16 @@ void warped_row(ExpPath path, const float* row, int w, double c, double sign, do
   warped_row_scalar(row, w, c, sign, m1, m2);
 }
 
-// MSM's power moments of one row: p[0..3][x] = d, d², d³ = d²·d, d⁴ = d²·d² (d = finite_dist),
-// each plane at its own offset `stride` from the last.
-SL_ROW_CLONES void power_row(const float* row, int w, size_t stride, double* p) {
-  for (int x = 0; x < w; ++x) p[x] = double(finite_dist_bits(row[x]));
+// MSM's power moments of one row, in float (moment_filter.h: why float): p[0..3][x] = d, d²,
+// d³ = d²·d, d⁴ = d²·d² (d = finite_dist), each plane at its own offset `stride` from the last.
+SL_ROW_CLONES void power_row(const float* row, int w, size_t stride, float* p) {
+  for (int x = 0; x < w; ++x) p[x] = finite_dist_bits(row[x]);
   for (int x = 0; x < w; ++x) {
-    const double d = p[x], d2 = d * d;
+    const float d = p[x], d2 = d * d;
     p[stride + size_t(x)] = d2;
     p[2 * stride + size_t(x)] = d2 * d;
     p[3 * stride + size_t(x)] = d2 * d2;
   }
-}
-
-// A filtered row's floats: out[x] = float(m[x]).
-SL_ROW_CLONES void float_row(const double* m, int w, float* out) {
-  for (int x = 0; x < w; ++x) out[x] = float(m[x]);
 }
 
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
@@ -411,12 +408,12 @@ SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* 
 // formed as power_row forms them (d² = d·d, d³ = d²·d, d⁴ = d²·d²) and each sum started from 0
 // and added in i order: hsum_k's sums of power_row's planes, without writing the planes.
 template <int K>
-SL_ROW_CLONES void hsum_powers_k(const float* ext, int w, double* h0, double* h1, double* h2,
-                                 double* h3) {
+SL_ROW_CLONES void hsum_powers_k(const float* ext, int w, float* h0, float* h1, float* h2,
+                                 float* h3) {
   for (int x = 0; x < w; ++x) {
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
     for (int i = 0; i < K; ++i) {
-      const double d = double(ext[x + i]), d2 = d * d;
+      const float d = ext[x + i], d2 = d * d;
       s0 += d;
       s1 += d2;
       s2 += d2 * d;
@@ -503,16 +500,15 @@ void esm_out_k(ExpPath path, const double* const* rows, int w, double inv, doubl
   esm_out_k_scalar<K>(rows, w, inv, c, d_min, out);
 }
 
-// MSM: one plane's K rows summed, × inv, as float.
+// MSM: one plane's K rows summed in float, × inv.
 template <int K>
-SL_ROW_CLONES void mean_out_k(const double* const* rows, int w, double inv, float* out) {
-  const double* r[K];
+SL_ROW_CLONES void mean_out_k(const float* const* rows, int w, float inv, float* out) {
+  const float* r[K];
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   for (int x = 0; x < w; ++x) {
-    double a = r[0][x];
+    float a = r[0][x];
     for (int j = 1; j < K; ++j) a += r[j][x];
-    a *= inv;
-    out[x] = float(a);
+    out[x] = a * inv;
   }
 }
 
@@ -569,44 +565,53 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
 #endif
 
 #if defined(__x86_64__)
-// MSM's four planes' output row straight into the interleaved map: mean_out_k's sums and
-// products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 8 texels at a time, transposed to
-// (m1 m2 m3 m4) per texel and written as two 64-byte lines with non-temporal stores (as
+// MSM's four planes' output row straight into the interleaved map: mean_out_k's float sums and
+// products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 16 texels at a time, transposed to
+// (m1 m2 m3 m4) per texel and written as four 64-byte lines with non-temporal stores (as
 // core/stream_copy.h writes them; the caller's fused_box fences). What mean_out_k,
 // interleave4_row and the stream copy do in three passes over tmp rows, in one; the same bits
 // (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
-// first 64-byte line and after the last whole 8 go one by one in the same operations.
+// first 64-byte line and after the last whole 16 go one by one in the same operations.
 template <int K>
-__attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const double* const* rows,
-                                                                   int w, double inv,
+__attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* const* rows,
+                                                                   int w, float inv,
                                                                    float* out) {
   auto one = [&](int x) {
-    for (int c = 0; c < 4; ++c) out[4 * x + c] = float(sum_rows<K>(rows + c * K, x) * inv);
+    for (int c = 0; c < 4; ++c) {
+      float a = rows[c * K][x];
+      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
+      out[4 * x + c] = a * inv;
+    }
   };
   // Non-temporal stores need aligned addresses: a row that cannot reach a line on a texel
   // boundary (never for the map's 16-byte aligned storage) goes one texel at a time.
   const int head = texels_to_line(out, 4, w, w);
   int x = 0;
   for (; x < head; ++x) one(x);
-  const __m512d vinv = _mm512_set1_pd(inv);
-  for (; x + 8 <= w; x += 8) {
-    __m256 m[4];
-    for (int c = 0; c < 4; ++c)
-      m[c] = _mm512_maskz_cvtpd_ps(0xFF, _mm512_mul_pd(sum_rows8<K>(rows + c * K, x), vinv));
-    const __m256 m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
-    // t0 = texels 0 1 | 4 5 of planes 0 1 interleaved; t2 the same of planes 2 3; t1, t3: 2 3 | 6 7.
-    const __m256 t0 = _mm256_unpacklo_ps(m0, m1), t1 = _mm256_unpackhi_ps(m0, m1);
-    const __m256 t2 = _mm256_unpacklo_ps(m2, m3), t3 = _mm256_unpackhi_ps(m2, m3);
-    // u_i = texel i | texel i + 4, each (m1 m2 m3 m4).
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
-    const __m256 o0 = _mm256_permute2f128_ps(u0, u1, 0x20), o1 = _mm256_permute2f128_ps(u2, u3, 0x20);
-    const __m256 o2 = _mm256_permute2f128_ps(u0, u1, 0x31), o3 = _mm256_permute2f128_ps(u2, u3, 0x31);
-    // Two whole lines as four 32-byte stores (they fill the same write-combining lines).
-    _mm256_stream_ps(out + 4 * x, o0);
-    _mm256_stream_ps(out + 4 * x + 8, o1);
-    _mm256_stream_ps(out + 4 * x + 16, o2);
-    _mm256_stream_ps(out + 4 * x + 24, o3);
+  // The row pointers in locals: through `rows` they would be reloaded after every store.
+  const float* r[4 * K];
+  for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
+  const __m512 vinv = _mm512_set1_ps(inv);
+  for (; x + 16 <= w; x += 16) {
+    __m512 m[4];
+    for (int c = 0; c < 4; ++c) {
+      __m512 a = _mm512_loadu_ps(r[c * K] + x);
+      for (int j = 1; j < K; ++j) a = _mm512_add_ps(a, _mm512_loadu_ps(r[c * K + j] + x));
+      m[c] = _mm512_mul_ps(a, vinv);
+    }
+    // Within each 128-bit lane (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
+    // planes 2 3; u_i texel 4q + i's four moments in lane q.
+    const __m512 t0 = _mm512_unpacklo_ps(m[0], m[1]), t1 = _mm512_unpackhi_ps(m[0], m[1]);
+    const __m512 t2 = _mm512_unpacklo_ps(m[2], m[3]), t3 = _mm512_unpackhi_ps(m[2], m[3]);
+    const __m512 u0 = _mm512_shuffle_ps(t0, t2, 0x44), u1 = _mm512_shuffle_ps(t0, t2, 0xEE);
+    const __m512 u2 = _mm512_shuffle_ps(t1, t3, 0x44), u3 = _mm512_shuffle_ps(t1, t3, 0xEE);
+    // Lanes regrouped: v0 = texels 0 4 1 5, v1 = 2 6 3 7, v2 = 8 12 9 13, v3 = 10 14 11 15.
+    const __m512 v0 = _mm512_shuffle_f32x4(u0, u1, 0x44), v1 = _mm512_shuffle_f32x4(u2, u3, 0x44);
+    const __m512 v2 = _mm512_shuffle_f32x4(u0, u1, 0xEE), v3 = _mm512_shuffle_f32x4(u2, u3, 0xEE);
+    _mm512_stream_ps(out + 4 * x, _mm512_shuffle_f32x4(v0, v1, 0x88));       // texels 0–3
+    _mm512_stream_ps(out + 4 * x + 16, _mm512_shuffle_f32x4(v0, v1, 0xDD));  // 4–7
+    _mm512_stream_ps(out + 4 * x + 32, _mm512_shuffle_f32x4(v2, v3, 0x88));  // 8–11
+    _mm512_stream_ps(out + 4 * x + 48, _mm512_shuffle_f32x4(v2, v3, 0xDD));  // 12–15
   }
   for (; x < w; ++x) one(x);
 }
@@ -643,19 +648,20 @@ inline void prefetch_row(const float* p, int n) {
   if (n > 0) __builtin_prefetch(e - 1, 0, 3);
 }
 
-// The fused separable box over `planes` planes, as a ring of k horizontal-sum rows per span of
-// output columns in each band of 32 output rows (kTexelTile: one span over the whole width
-// without `tiles`, else the needed tiles' runs, tile_spans): hrow(y, span, dst, ext) writes input
-// row y's horizontal sums over the span's columns (dst[c]: span.n doubles of plane c; ext:
-// scratch of planes × (w + k − 1) doubles); out_row(y, span, window, out) receives, plane after
-// plane, the k rows' pointers of output row y's vertical window (rows clamped to the image) in
-// top-to-bottom order, and scratch of (planes + 1) × w doubles. Each input row's sums are
+// The fused separable box over `planes` planes of sums of type T (double; MSM's float), as a ring
+// of k horizontal-sum rows per span of output columns in each band of 32 output rows
+// (kTexelTile: one span over the whole width without `tiles`, else the needed tiles' runs,
+// tile_spans): hrow(y, span, dst, ext) writes input row y's horizontal sums over the span's
+// columns (dst[c]: span.n values of plane c; ext: scratch of planes × (w + k − 1) values);
+// out_row(y, span, window, out) receives, plane after plane, the k rows' pointers of output row
+// y's vertical window (rows clamped to the image) in top-to-bottom order, and scratch of
+// (planes + 1) × w doubles' worth of bytes. Each input row's sums are
 // computed once per band and span (plus k − 1 rows shared with the next band) and stay in cache.
 // `src` (w floats per row, the distances the rows are made from) is prefetched a row ahead over
 // the span's input columns: the render wrote it long before (a face is larger than the caches),
 // and each span row starts a new stream the hardware prefetcher has not seen, so without the
 // hint the row makers wait on memory (a prefetch changes no value).
-template <class HRow, class OutRow>
+template <class T = double, class HRow, class OutRow>
 void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const float* src,
                const HRow& hrow, const OutRow& out_row) {
   const int r = k / 2;
@@ -664,15 +670,16 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
     // One uninitialized block: every value is written before it is read.
     const size_t row_len = size_t(w), ew = size_t(w) + size_t(k) - 1;
     const size_t n_ring = size_t(k) * size_t(planes) * row_len;
-    const std::unique_ptr<double[]> ring(
-        new double[n_ring + size_t(planes) * (ew + row_len) + row_len]);
-    double* const ext = ring.get() + n_ring;
-    double* const out = ext + size_t(planes) * ew;
+    // out_row's scratch: (planes + 1) × w doubles' worth of bytes, whatever T.
+    const size_t n_out = (size_t(planes) + 1) * row_len * (sizeof(double) / sizeof(T));
+    const std::unique_ptr<T[]> ring(new T[n_ring + size_t(planes) * ew + n_out]);
+    T* const ext = ring.get() + n_ring;
+    T* const out = ext + size_t(planes) * ew;
     auto slot = [&](int yy, int c) {
       return ring.get() + (size_t(yy % k) * size_t(planes) + size_t(c)) * row_len;
     };
-    std::vector<double*> dst(static_cast<size_t>(planes));
-    std::vector<const double*> window(size_t(planes) * size_t(k));
+    std::vector<T*> dst(static_cast<size_t>(planes));
+    std::vector<const T*> window(size_t(planes) * size_t(k));
     std::vector<TexelSpan> spans;
     for (size_t band = b0; band < b1; ++band) {
       tile_spans(tiles, int(band), w, spans);
@@ -947,7 +954,9 @@ namespace {
 
 // Plane c's filtered row y (a span's columns) goes to row_of(c, y, span, tmp): a row of out[c],
 // or (interleaved given) the c-th of four span.n-float rows in tmp, which finish(y, span, tmp)
-// then interleaves into row y.
+// then interleaves into row y. The sums are in float (moment_filter.h says why): the powers as
+// power_row forms them, each horizontal sum from 0 in window order, the vertical sums in row
+// order, then × 1/k² (a float), the same operations on every path.
 void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
                    const FaceTiles* tiles, std::vector<float>* out,
                    std::vector<float>* interleaved) {
@@ -957,8 +966,8 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   else
     for (int c = 0; c < 4; ++c) out[c].resize(n);
   const size_t ew = size_t(w) + size_t(k) - 1;
-  const double inv = 1.0 / double(k * k);
-  auto make_row = [&](int y, const SpanCols& s, double* ext) {
+  const float inv = 1.0f / float(k * k);
+  auto make_row = [&](int y, const SpanCols& s, float* ext) {
     power_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ew, ext + s.lead);
     for (int c = 0; c < 4; ++c) extend_span(ext + size_t(c) * ew, s, k);
   };
@@ -983,15 +992,14 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   };
   if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
-        fused_box(
+        fused_box<float>(
             w, h, k, 4, tiles, dist,
-            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
-              float* const ext_f = reinterpret_cast<float*>(ext);
-              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
-              extend_span(ext_f, s, k);
-              hsum_powers_k<K>(ext_f, s.n, dst[0], dst[1], dst[2], dst[3]);
+            [&](int y, const SpanCols& s, float* const* dst, float* ext) {
+              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead);
+              extend_span(ext, s, k);
+              hsum_powers_k<K>(ext, s.n, dst[0], dst[1], dst[2], dst[3]);
             },
-            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+            [&](int y, const SpanCols& s, const float* const* win, float* tmp) {
 #if defined(__x86_64__)
               if (fused512) {
                 msm_out_interleaved_avx512<K>(
@@ -1000,27 +1008,21 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
                 return;
               }
 #endif
-              float* const tmp = reinterpret_cast<float*>(scratch);  // 8·n of its 10·w floats
-              for (int c = 0; c < 4; ++c)
-                mean_out_k<K>(win + c * K, s.n, inv, row_of(c, y, s, tmp));
+              // tmp: 8·n of its 10·w floats.
+              for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, s.n, inv, row_of(c, y, s, tmp));
               finish(y, s, tmp);
             });
       }))
     return;
-  fused_box(
+  fused_box<float>(
       w, h, k, 4, tiles, dist,
-      [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+      [&](int y, const SpanCols& s, float* const* dst, float* ext) {
         make_row(y, s, ext);
         for (int c = 0; c < 4; ++c) hsum_row(ext + size_t(c) * ew, s.n, k, dst[c]);
       },
-      [&](int y, const SpanCols& s, const double* const* win, double* m) {
-        // m: w doubles of sums, then 4·n floats of plane rows and 4·n of the interleaved row (at
-        // most 4·w doubles).
-        float* const tmp = reinterpret_cast<float*>(m + size_t(w));
-        for (int c = 0; c < 4; ++c) {
-          vsum_rows(win + c * k, s.n, k, inv, m);
-          float_row(m, s.n, row_of(c, y, s, tmp));
-        }
+      [&](int y, const SpanCols& s, const float* const* win, float* tmp) {
+        // tmp: 4·n floats of plane rows and 4·n of the interleaved row (of its 10·w floats).
+        for (int c = 0; c < 4; ++c) vsum_rows(win + c * k, s.n, k, inv, row_of(c, y, s, tmp));
         finish(y, s, tmp);
       });
 }
