@@ -172,6 +172,36 @@ __attribute__((target("avx512f"))) inline __m512d exp_d8(__m512d x) {
   return _mm512_castsi512_pd(_mm512_add_epi64(_mm512_castpd_si512(s), q));
 }
 
+// exp_f of 8 floats (AVX2) and of 16 (AVX-512): exp_f's operations in exp_f's order, so each
+// lane gets exp_f's bits (tests/core/exp_log_test.cpp), for the EVSM filter's rows.
+__attribute__((target("avx2"))) inline __m256 exp_f8(__m256 x) {
+  const __m256 shifter = _mm256_set1_ps(12582912.0f);
+  const __m256 t = _mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504f)), shifter);
+  const __m256 n = _mm256_sub_ps(t, shifter);
+  const __m256 r = _mm256_sub_ps(_mm256_sub_ps(x, _mm256_mul_ps(n, _mm256_set1_ps(0.693359375f))),
+                                 _mm256_mul_ps(n, _mm256_set1_ps(-2.12194440e-4f)));
+  __m256 p = _mm256_set1_ps(1.0f / 5040.0f);
+  for (const float c : {1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f, 1.0f / 6.0f, 0.5f, 1.0f, 1.0f})
+    p = _mm256_add_ps(_mm256_mul_ps(p, r), _mm256_set1_ps(c));
+  const __m256i ni = _mm256_sub_epi32(_mm256_castps_si256(t), _mm256_castps_si256(shifter));
+  return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(p), _mm256_slli_epi32(ni, 23)));
+}
+
+__attribute__((target("avx512f"))) inline __m512 exp_f16(__m512 x) {
+  const __m512 shifter = _mm512_set1_ps(12582912.0f);
+  const __m512 t = _mm512_add_ps(_mm512_mul_ps(x, _mm512_set1_ps(1.44269504f)), shifter);
+  const __m512 n = _mm512_sub_ps(t, shifter);
+  const __m512 r = _mm512_sub_ps(_mm512_sub_ps(x, _mm512_mul_ps(n, _mm512_set1_ps(0.693359375f))),
+                                 _mm512_mul_ps(n, _mm512_set1_ps(-2.12194440e-4f)));
+  __m512 p = _mm512_set1_ps(1.0f / 5040.0f);
+  for (const float c : {1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f, 1.0f / 6.0f, 0.5f, 1.0f, 1.0f})
+    p = _mm512_add_ps(_mm512_mul_ps(p, r), _mm512_set1_ps(c));
+  const __m512i ni = _mm512_sub_epi32(_mm512_castps_si512(t), _mm512_castps_si512(shifter));
+  // The zero-masked shift with every lane on, as in exp_d8.
+  const __m512i q = _mm512_maskz_slli_epi32(0xFFFF, ni, 23);
+  return _mm512_castsi512_ps(_mm512_add_epi32(_mm512_castps_si512(p), q));
+}
+
 // log_d of 4 and of 8 doubles, as exp_d4 and exp_d8 are to exp_d (tables by gathers, or by
 // two-register permutes).
 __attribute__((target("avx2"))) inline __m256d log_d4(__m256d x) {

@@ -192,12 +192,18 @@ SL_ROW_CLONES void esm_exp_row_scalar(const float* row, int w, double c, double 
   for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
 }
 
-// EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v².
+// EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v², the warp in
+// float (exp_f of float(sign·c)·((d + d) − 1)), its moments and sums in double. Why float is
+// exact enough for the warp: its rounding moves v by at most ~4e-6 relative (the argument's
+// roundings, |x| <= 44.4, and exp_f's 2 ulp), which is what a change of d by 1–2 of its own
+// float ulps does (dv/v = 2c·dd, c <= 44.4); the variance, whose cancellation needs double, is
+// formed from the double sums as before (README "Techniques", EVSM).
 SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double sign, double* m1,
                                      double* m2) {
-  for (int x = 0; x < w; ++x) m1[x] = double(finite_dist_bits(row[x]));
+  const float sc = float(sign * c);
   for (int x = 0; x < w; ++x) {
-    const double v = sign * exp_d(sign * c * (2.0 * m1[x] - 1.0));
+    const float d = finite_dist_bits(row[x]);
+    const double v = sign * double(exp_f(sc * ((d + d) - 1.0f)));
     m1[x] = v;
     m2[x] = v * v;
   }
@@ -231,32 +237,43 @@ __attribute__((target("avx2"))) void esm_exp_row_avx2(const float* row, int w, d
   esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
 }
 
+// The warp 16 (AVX-512) and 8 (AVX2) floats at a time by exp_f16 / exp_f8, each half of 8 or 4
+// then in double; min(d, 1) is finite_dist as above.
 __attribute__((target("avx512f"))) void warped_row_avx512(const float* row, int w, double c,
                                                           double sign, double* m1, double* m2) {
-  const __m256 one = _mm256_set1_ps(1.0f);
-  const __m512d sc = _mm512_set1_pd(sign * c), vs = _mm512_set1_pd(sign);
+  const __m512 one = _mm512_set1_ps(1.0f), sc = _mm512_set1_ps(float(sign * c));
+  const __m512d vs = _mm512_set1_pd(sign);
   int x = 0;
-  for (; x + 8 <= w; x += 8) {
-    const __m512d d = _mm512_maskz_cvtps_pd(0xFF, _mm256_min_ps(_mm256_loadu_ps(row + x), one));
-    const __m512d t = _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(2.0), d), _mm512_set1_pd(1.0));
-    const __m512d v = _mm512_mul_pd(vs, exp_d8(_mm512_mul_pd(sc, t)));
-    _mm512_storeu_pd(m1 + x, v);
-    _mm512_storeu_pd(m2 + x, _mm512_mul_pd(v, v));
+  for (; x + 16 <= w; x += 16) {
+    // (Zero-masked forms with every lane on, for GCC 12's -Wmaybe-uninitialized: exp_d8.)
+    const __m512 d = _mm512_maskz_min_ps(0xFFFF, _mm512_loadu_ps(row + x), one);
+    const __m512 e = exp_f16(_mm512_mul_ps(sc, _mm512_sub_ps(_mm512_add_ps(d, d), one)));
+    const __m256 half[2] = {
+        _mm256_castpd_ps(_mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(e), 0)),
+        _mm256_castpd_ps(_mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(e), 1))};
+    for (int k = 0; k < 2; ++k) {
+      const __m512d v = _mm512_mul_pd(vs, _mm512_maskz_cvtps_pd(0xFF, half[k]));
+      _mm512_storeu_pd(m1 + x + 8 * k, v);
+      _mm512_storeu_pd(m2 + x + 8 * k, _mm512_mul_pd(v, v));
+    }
   }
   warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
 }
 
 __attribute__((target("avx2"))) void warped_row_avx2(const float* row, int w, double c,
                                                      double sign, double* m1, double* m2) {
-  const __m128 one = _mm_set1_ps(1.0f);
-  const __m256d sc = _mm256_set1_pd(sign * c), vs = _mm256_set1_pd(sign);
+  const __m256 one = _mm256_set1_ps(1.0f), sc = _mm256_set1_ps(float(sign * c));
+  const __m256d vs = _mm256_set1_pd(sign);
   int x = 0;
-  for (; x + 4 <= w; x += 4) {
-    const __m256d d = _mm256_cvtps_pd(_mm_min_ps(_mm_loadu_ps(row + x), one));
-    const __m256d t = _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), d), _mm256_set1_pd(1.0));
-    const __m256d v = _mm256_mul_pd(vs, exp_d4(_mm256_mul_pd(sc, t)));
-    _mm256_storeu_pd(m1 + x, v);
-    _mm256_storeu_pd(m2 + x, _mm256_mul_pd(v, v));
+  for (; x + 8 <= w; x += 8) {
+    const __m256 d = _mm256_min_ps(_mm256_loadu_ps(row + x), one);
+    const __m256 e = exp_f8(_mm256_mul_ps(sc, _mm256_sub_ps(_mm256_add_ps(d, d), one)));
+    const __m128 half[2] = {_mm256_castps256_ps128(e), _mm256_extractf128_ps(e, 1)};
+    for (int k = 0; k < 2; ++k) {
+      const __m256d v = _mm256_mul_pd(vs, _mm256_cvtps_pd(half[k]));
+      _mm256_storeu_pd(m1 + x + 4 * k, v);
+      _mm256_storeu_pd(m2 + x + 4 * k, _mm256_mul_pd(v, v));
+    }
   }
   warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
 }
@@ -601,17 +618,25 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* 
     }
     // Within each 128-bit lane (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
     // planes 2 3; u_i texel 4q + i's four moments in lane q.
-    const __m512 t0 = _mm512_unpacklo_ps(m[0], m[1]), t1 = _mm512_unpackhi_ps(m[0], m[1]);
-    const __m512 t2 = _mm512_unpacklo_ps(m[2], m[3]), t3 = _mm512_unpackhi_ps(m[2], m[3]);
-    const __m512 u0 = _mm512_shuffle_ps(t0, t2, 0x44), u1 = _mm512_shuffle_ps(t0, t2, 0xEE);
-    const __m512 u2 = _mm512_shuffle_ps(t1, t3, 0x44), u3 = _mm512_shuffle_ps(t1, t3, 0xEE);
+    // (The zero-masked forms with every lane on: GCC 12's unmasked ones trip
+    // -Wmaybe-uninitialized, as in core/exp_log.h.)
+    const __m512 t0 = _mm512_maskz_unpacklo_ps(0xFFFF, m[0], m[1]);
+    const __m512 t1 = _mm512_maskz_unpackhi_ps(0xFFFF, m[0], m[1]);
+    const __m512 t2 = _mm512_maskz_unpacklo_ps(0xFFFF, m[2], m[3]);
+    const __m512 t3 = _mm512_maskz_unpackhi_ps(0xFFFF, m[2], m[3]);
+    const __m512 u0 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0x44);
+    const __m512 u1 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0xEE);
+    const __m512 u2 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0x44);
+    const __m512 u3 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0xEE);
     // Lanes regrouped: v0 = texels 0 4 1 5, v1 = 2 6 3 7, v2 = 8 12 9 13, v3 = 10 14 11 15.
-    const __m512 v0 = _mm512_shuffle_f32x4(u0, u1, 0x44), v1 = _mm512_shuffle_f32x4(u2, u3, 0x44);
-    const __m512 v2 = _mm512_shuffle_f32x4(u0, u1, 0xEE), v3 = _mm512_shuffle_f32x4(u2, u3, 0xEE);
-    _mm512_stream_ps(out + 4 * x, _mm512_shuffle_f32x4(v0, v1, 0x88));       // texels 0–3
-    _mm512_stream_ps(out + 4 * x + 16, _mm512_shuffle_f32x4(v0, v1, 0xDD));  // 4–7
-    _mm512_stream_ps(out + 4 * x + 32, _mm512_shuffle_f32x4(v2, v3, 0x88));  // 8–11
-    _mm512_stream_ps(out + 4 * x + 48, _mm512_shuffle_f32x4(v2, v3, 0xDD));  // 12–15
+    const __m512 v0 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0x44);
+    const __m512 v1 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0x44);
+    const __m512 v2 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0xEE);
+    const __m512 v3 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0xEE);
+    _mm512_stream_ps(out + 4 * x, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0x88));  // 0–3
+    _mm512_stream_ps(out + 4 * x + 16, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD));  // 4–7
+    _mm512_stream_ps(out + 4 * x + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
+    _mm512_stream_ps(out + 4 * x + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
   }
   for (; x < w; ++x) one(x);
 }

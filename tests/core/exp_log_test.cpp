@@ -41,6 +41,13 @@ __attribute__((target("avx512f"), noinline)) void log8_store(const double* x, do
   _mm512_storeu_pd(y, log_d8(_mm512_loadu_pd(x)));
 }
 
+__attribute__((target("avx2"), noinline)) void expf8_store(const float* x, float* y) {
+  _mm256_storeu_ps(y, exp_f8(_mm256_loadu_ps(x)));
+}
+__attribute__((target("avx512f"), noinline)) void expf16_store(const float* x, float* y) {
+  _mm512_storeu_ps(y, exp_f16(_mm512_loadu_ps(x)));
+}
+
 // Distance in units of the last place of the exact value (long double).
 double ulps(double got, long double exact) {
   const double e = double(exact);
@@ -126,6 +133,34 @@ TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
       ASSERT_EQ(std::memcmp(&y[k], &one, 8), 0) << x[k];
     }
   }
+}
+
+// exp_f8 (AVX2) and exp_f16 (AVX-512) give exp_f's bits over its range: random arguments, and a
+// grid of ln2/24 steps over [-59, 59] (both signs: EVSM's negative warp; and the reduction's
+// rounding to the nearest multiple of ln2 from either side).
+TEST(ExpLog, IntrinsicFloatExpsGiveTheScalarBits) {
+  const bool avx2 = __builtin_cpu_supports("avx2"), avx512 = __builtin_cpu_supports("avx512f");
+  if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-87.0f, 88.0f);
+  size_t checked = 0;
+  for (int i = 0; i < 200000; i += 16) {
+    float x[16], y8[16], y16[16];
+    for (int k = 0; k < 16; ++k)
+      x[k] = i < 4096 ? float(i + k - 2048) * 0.6931471805599453f / 24.0f : u(rng);
+    expf8_store(x, y8);
+    expf8_store(x + 8, y8 + 8);
+    if (avx512) expf16_store(x, y16);
+    for (int k = 0; k < 16; ++k) {
+      const float one = expf_one(x[k]);
+      ASSERT_EQ(std::memcmp(&y8[k], &one, 4), 0) << "exp_f8 " << x[k];
+      if (avx512) {
+        ASSERT_EQ(std::memcmp(&y16[k], &one, 4), 0) << "exp_f16 " << x[k];
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 200000u);
 }
 
 // log_d4 and log_d8 give log_d's bits: every mantissa step (both sides of the fold at 1.5),
