@@ -296,7 +296,7 @@ void warped_row(ExpPath path, const float* row, int w, double c, double sign, do
   warped_row_scalar(row, w, c, sign, m1, m2);
 }
 
-// MSM's power moments of one row, in float (moment_filter.h: why float): p[0..3][x] = d, d²,
+// MSM's power moments of one row, in float (moment_filter.h says why): p[0..3][x] = d, d²,
 // d³ = d²·d, d⁴ = d²·d² (d = finite_dist), each plane at its own offset `stride` from the last.
 SL_ROW_CLONES void power_row(const float* row, int w, size_t stride, float* p) {
   for (int x = 0; x < w; ++x) p[x] = finite_dist_bits(row[x]);

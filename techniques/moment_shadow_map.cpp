@@ -1,5 +1,5 @@
 // The moment filter ("msm": cmsm, tmsm, pmsm; Peters & Klein 2015): the power moments d, d²,
-// d³, d⁴ of the stored normalised distance, box-filtered in double (techniques/moment_filter.h)
+// d³, d⁴ of the stored normalised distance, box-filtered in float (techniques/moment_filter.h)
 // and stored as 4 floats per texel, or through the optimized 16-bit quantization; looked up
 // bilinearly (the moments mix linearly, so the 4 taps' weighted sum is the footprint's
 // moments) and turned into the sharpest lower bound on the occluded fraction
