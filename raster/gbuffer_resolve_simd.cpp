@@ -7,6 +7,7 @@
 #endif
 
 #include "core/cpu_features.h"
+#include "core/gbuffer.h"
 
 namespace shadowlab {
 
