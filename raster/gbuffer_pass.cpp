@@ -163,7 +163,8 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             continue;
           }
           // Run by run, from the runs' first pixels (no loop over a run's pixels).
-          for (int k = __builtin_ctz(starts); starts != 0; k = __builtin_ctz(starts)) {
+          while (starts != 0) {
+            const int k = __builtin_ctz(starts);
             starts &= starts - 1u;
             const int k1 = starts ? __builtin_ctz(starts) : 16;
             const uint32_t tk = ids[k];
