@@ -173,7 +173,8 @@ __attribute__((target("avx512f"))) inline __m512d exp_d8(__m512d x) {
 }
 
 // exp_f of 8 floats (AVX2) and of 16 (AVX-512): exp_f's operations in exp_f's order, so each
-// lane gets exp_f's bits (tests/core/exp_log_test.cpp), for the EVSM filter's rows.
+// lane gets exp_f's bits (tests/core/exp_log_test.cpp), for the EVSM filter's rows and the
+// ESM lookup's AVX2 batch.
 __attribute__((target("avx2"))) inline __m256 exp_f8(__m256 x) {
   const __m256 shifter = _mm256_set1_ps(12582912.0f);
   const __m256 t = _mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504f)), shifter);

@@ -58,22 +58,9 @@ inline float esm_combine(float z00, float z10, float z01, float z11, float fx, f
 }
 
 // The lane arithmetic of 8 pixels at once (the loads before it are per lane): esm_combine with
-// AVX2 intrinsics, the same operations in the same order (exp_f's steps; std::min(a, b) is
+// AVX2 intrinsics, the same operations in the same order (exp_f8: exp_f's steps; std::min(a, b) is
 // b < a ? b : a, i.e. _mm256_min_ps(b, a)). The compiler left the plain loop scalar.
 #if defined(__x86_64__)
-__attribute__((target("avx2"))) inline __m256 exp8(__m256 x) {
-  const __m256 shifter = _mm256_set1_ps(12582912.0f);
-  const __m256 t = _mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504f)), shifter);
-  const __m256 n = _mm256_sub_ps(t, shifter);
-  const __m256 r = _mm256_sub_ps(_mm256_sub_ps(x, _mm256_mul_ps(n, _mm256_set1_ps(0.693359375f))),
-                                 _mm256_mul_ps(n, _mm256_set1_ps(-2.12194440e-4f)));
-  __m256 p = _mm256_set1_ps(1.0f / 5040.0f);
-  for (const float c : {1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f, 1.0f / 6.0f, 0.5f, 1.0f, 1.0f})
-    p = _mm256_add_ps(_mm256_mul_ps(p, r), _mm256_set1_ps(c));
-  const __m256i ni = _mm256_sub_epi32(_mm256_castps_si256(t), _mm256_castps_si256(shifter));
-  return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(p), _mm256_slli_epi32(ni, 23)));
-}
-
 __attribute__((target("avx2"))) void esm_combine8_avx2(const float (*z)[8], const float* fx,
                                                        const float* fy, const float* ct,
                                                        float* out) {
@@ -81,7 +68,7 @@ __attribute__((target("avx2"))) void esm_combine8_avx2(const float (*z)[8], cons
   __m256 e[4];
   for (int i = 0; i < 4; ++i) {
     const __m256 d = _mm256_sub_ps(_mm256_loadu_ps(z[i]), vct);
-    e[i] = exp8(_mm256_max_ps(_mm256_set1_ps(-87.0f), _mm256_min_ps(_mm256_set1_ps(80.0f), d)));
+    e[i] = exp_f8(_mm256_max_ps(_mm256_set1_ps(-87.0f), _mm256_min_ps(_mm256_set1_ps(80.0f), d)));
   }
   const __m256 vx = _mm256_loadu_ps(fx), vy = _mm256_loadu_ps(fy);
   const __m256 ox = _mm256_sub_ps(one, vx), oy = _mm256_sub_ps(one, vy);
