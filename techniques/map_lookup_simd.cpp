@@ -319,6 +319,33 @@ SL_AVX2 void receivers8_avx2(const MapLookupConsts& c, const float* pos, const f
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.active), _mm256_castps_si256(r.active));
 }
 
+// dst = clamp(v, lo, hi) >> shift, per lane (texel indices to tile indices).
+SL_AVX2 inline void store_tiles(int32_t* dst, __m256i v, __m256i lo, __m256i hi, __m128i shift) {
+  const __m256i c = _mm256_min_epi32(_mm256_max_epi32(v, lo), hi);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(dst), _mm256_srl_epi32(c, shift));
+}
+
+SL_AVX2 void footprint_tiles8_avx2(const MapLookupConsts& c, const float* pos, const float* nrm,
+                                   const uint8_t* covered, int tile_shift, FootprintTiles8& out) {
+  const Front f = front(c, pos, nrm, covered);
+  __m256 sx, sy, axial;
+  texel_coords(c, f, sx, sy, axial);
+  // bilinear_taps: floor(st − ½) and the next texel, each clamped to the image.
+  const __m256 half = set(0.5f);
+  const __m256i ix = floor_i(_mm256_sub_ps(sx, half)), iy = floor_i(_mm256_sub_ps(sy, half));
+  const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
+  const __m256i wm = _mm256_sub_epi32(lane_i(c.width, f.face), one);
+  const __m256i hm = _mm256_sub_epi32(lane_i(c.height, f.face), one);
+  // Texel indices are >= 0 after the clamp: the division by the tile edge is a shift.
+  const __m128i t = _mm_cvtsi32_si128(tile_shift);
+  store_tiles(out.tx0, ix, zero, wm, t);
+  store_tiles(out.tx1, _mm256_add_epi32(ix, one), zero, wm, t);
+  store_tiles(out.ty0, iy, zero, hm, t);
+  store_tiles(out.ty1, _mm256_add_epi32(iy, one), zero, hm, t);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.face), f.face);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.active), _mm256_castps_si256(f.active));
+}
+
 SL_AVX2 void depth1_avx2(const MapLookupConsts& c, const float* pos, const float* nrm,
                          const uint8_t* covered, float* mask, uint32_t* texels) {
   const R8 r = receivers(c, pos, nrm, covered);
@@ -690,6 +717,13 @@ Bilinear8x2Fn bilinear8_interleaved2_simd() {
 Receivers8Fn receivers8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return receivers8_avx2;
+#endif
+  return nullptr;
+}
+
+FootprintTiles8Fn footprint_tiles8_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return footprint_tiles8_avx2;
 #endif
   return nullptr;
 }

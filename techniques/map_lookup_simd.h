@@ -113,6 +113,16 @@ Prefetch8Fn prefetch8_simd();
 // AVX2 (only the AVX2 receivers make batches), with std::clamp's compare order (a NaN stays NaN).
 void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels);
 Receivers8Fn receivers8_simd();
+// The texel tiles of 8 pixels' bilinear footprints (texel_tiles.cpp's pixel path): per active
+// lane its face and the tile columns tx0..tx1 and rows ty0..ty1 (tile edge 2^tile_shift texels) of the
+// footprint's clamped texels, from the receivers8 texel coordinates (the same operations, so the
+// same texels as bilinear_taps of them), without the receivers' depth and slope terms.
+struct FootprintTiles8 {
+  alignas(32) int32_t face[8], tx0[8], tx1[8], ty0[8], ty1[8], active[8];
+};
+using FootprintTiles8Fn = void (*)(const MapLookupConsts& c, const float* pos, const float* nrm,
+                                   const uint8_t* covered, int tile_shift, FootprintTiles8& out);
+FootprintTiles8Fn footprint_tiles8_simd();
 Depth1Fn depth1_simd();
 PcfFn pcf_simd();
 Faces8Fn faces8_simd();

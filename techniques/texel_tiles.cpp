@@ -97,6 +97,7 @@ struct PixelMarker {
   const MapParams& p;
   std::vector<FaceTiles>& tiles;
   Receivers8Fn receivers8 = nullptr;  // the lookups' AVX2 receivers (no normal offset)
+  FootprintTiles8Fn tiles8 = nullptr;  // their texel coordinates' footprint tiles alone
   MapLookupConsts consts;
   ProjectorFrame frame;
   float reach = 0.0f, inv_far = 0.0f;
@@ -105,6 +106,7 @@ struct PixelMarker {
               std::vector<FaceTiles>& t)
       : scene(s), g(gb), layout(l), p(mp), tiles(t) {
     receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
+    tiles8 = receivers8 ? footprint_tiles8_simd() : nullptr;
     if (receivers8) consts = map_lookup_consts(scene, layout, p, {});
     if (layout.kind == FaceLayoutKind::Projector) frame = projector_frame(scene.projector);
     reach = map_reach(p);
@@ -139,6 +141,28 @@ struct PixelMarker {
           make_receiver(layout, scene.light, p, reach, inv_far, g.position[i], g.geo_normal[i]);
       visit(r.face, r.st);
     }
+  }
+
+  // mark_each's tiles, 8 pixels at a time from their footprints' tiles (footprint_tiles8: the
+  // receivers' texel coordinates without their depth and slope terms, which the tiles do not
+  // need; about half of the pixel path's cost went there), the rest through mark_each.
+  void mark_each_fast(size_t b, size_t e) const {
+    static_assert(kTexelTile == 32, "footprint_tiles8 shifts by 5");
+    size_t i = b;
+    int last[5] = {-1, 0, 0, 0, 0};
+    if (tiles8)
+      for (; i + 8 <= e; i += 8) {
+        FootprintTiles8 t;
+        tiles8(consts, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], 5, t);
+        for (int k = 0; k < 8; ++k) {
+          if (!t.active[k]) continue;
+          const int cur[5] = {t.face[k], t.tx0[k], t.tx1[k], t.ty0[k], t.ty1[k]};
+          if (std::equal(cur, cur + 5, last)) continue;
+          std::copy(cur, cur + 5, last);
+          mark_tiles(tiles, cur[0], cur[1], cur[2], cur[3], cur[4]);
+        }
+      }
+    mark_each(i, e);
   }
 
   // Every pixel's own footprint marked, skipping a pixel whose tiles are its predecessor's.
@@ -381,7 +405,7 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
     const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
     for (int y = y0; y < y1; ++y) {
       const size_t i = size_t(y) * size_t(g.width);
-      marker.mark_each(i + size_t(x0), i + size_t(x1));
+      marker.mark_each_fast(i + size_t(x0), i + size_t(x1));
     }
   };
   // 2 × 2 blocks at a time first: the box around the four is decided once when its hulls are
