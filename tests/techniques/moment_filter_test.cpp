@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
 
+#include "core/cpu_features.h"
 #include "techniques/moment_filter.h"
 #include "techniques/texel_tiles.h"
 
@@ -89,7 +91,8 @@ TEST(MomentFilter, EsmLogSpaceFilterIsFiniteAndExactAtCFiveHundred) {
 // The fixed-width kernels (k = 1..9, sums in registers, vectorized) against the runtime-k row
 // loops, bit for bit, on images whose widths are not multiples of any vector length, with
 // empty texels (+inf) and exact ties, at every compiled width and one runtime width.
-TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
+// The fixed-width kernels (whichever ISA the filters pick) against the runtime-width loops.
+void fixed_width_kernels_equal_the_runtime_width_loops() {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(0.0f, 1.2f);  // > 1 and +inf: nothing seen
   for (const auto& [w, h] : {std::pair{37, 23}, std::pair{1030, 9}, std::pair{5, 40}}) {
@@ -169,6 +172,22 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
       }
     }
   }
+}
+
+TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
+  fixed_width_kernels_equal_the_runtime_width_loops();
+}
+
+// The same with the AVX-512 rows switched off (SHADOWLAB_ISA=avx2, read at each filter call):
+// on an AVX-512 machine the AVX2 exp, log and warp rows run only here.
+TEST(MomentFilter, Avx2KernelsEqualTheRuntimeWidthLoopsBitForBit) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  struct IsaGuard {
+    IsaGuard() { setenv("SHADOWLAB_ISA", "avx2", 1); }
+    ~IsaGuard() { unsetenv("SHADOWLAB_ISA"); }
+  } guard;
+  ASSERT_FALSE(use_avx512_paths());
+  fixed_width_kernels_equal_the_runtime_width_loops();
 }
 
 // MSM's four power moments are the window means of d, d², d³, d⁴ (long double brute force,
