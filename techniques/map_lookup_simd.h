@@ -114,9 +114,10 @@ Prefetch8Fn prefetch8_simd();
 void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels);
 Receivers8Fn receivers8_simd();
 // The texel tiles of 8 pixels' bilinear footprints (texel_tiles.cpp's pixel path): per active
-// lane its face and the tile columns tx0..tx1 and rows ty0..ty1 (tile edge 2^tile_shift texels) of the
-// footprint's clamped texels, from the receivers8 texel coordinates (the same operations, so the
-// same texels as bilinear_taps of them), without the receivers' depth and slope terms.
+// lane its face and the tile columns tx0..tx1 and rows ty0..ty1 (tile edge 2^tile_shift
+// texels) of the footprint's clamped texels, from the receivers8 texel coordinates (the same
+// operations, so the same texels as bilinear_taps of them), without the receivers' depth and
+// slope terms.
 struct FootprintTiles8 {
   alignas(32) int32_t face[8], tx0[8], tx1[8], ty0[8], ty1[8], active[8];
 };
