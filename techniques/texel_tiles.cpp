@@ -96,8 +96,8 @@ struct PixelMarker {
   const FaceLayout& layout;
   const MapParams& p;
   std::vector<FaceTiles>& tiles;
-  Receivers8Fn receivers8 = nullptr;  // the lookups' AVX2 receivers (no normal offset)
-  FootprintTiles8Fn tiles8 = nullptr;  // their texel coordinates' footprint tiles alone
+  // The lookups' AVX2 receivers' texel coordinates, as footprint tiles (no normal offset).
+  FootprintTiles8Fn tiles8 = nullptr;
   MapLookupConsts consts;
   ProjectorFrame frame;
   float reach = 0.0f, inv_far = 0.0f;
@@ -105,30 +105,29 @@ struct PixelMarker {
   PixelMarker(const Scene& s, const GBuffer& gb, const FaceLayout& l, const MapParams& mp,
               std::vector<FaceTiles>& t)
       : scene(s), g(gb), layout(l), p(mp), tiles(t) {
-    receivers8 = p.normal <= 0.0f ? receivers8_simd() : nullptr;
-    tiles8 = receivers8 ? footprint_tiles8_simd() : nullptr;
-    if (receivers8) consts = map_lookup_consts(scene, layout, p, {});
+    tiles8 = p.normal <= 0.0f ? footprint_tiles8_simd() : nullptr;
+    if (tiles8) consts = map_lookup_consts(scene, layout, p, {});
     if (layout.kind == FaceLayoutKind::Projector) frame = projector_frame(scene.projector);
     reach = map_reach(p);
     inv_far = 1.0f / scene.light.far;
   }
 
-  // fn(face, footprint) for each looked-up pixel of [b, e), from the receiver the lookup
-  // computes (lookup_faces' rules: covered, facing the light, inside the projector) and the
-  // bilinear footprint it reads (bilinear_taps: the same clamped texels).
+  // fn(face, tx0, tx1, ty0, ty1) for each looked-up pixel of [b, e): the tiles of the bilinear
+  // footprint its lookup reads (lookup_faces' rules: covered, facing the light, inside the
+  // projector; bilinear_taps' clamped texels of the receiver's texel coordinates), 8 pixels at a
+  // time by footprint_tiles8 (the receivers' face and texel-coordinate operations without their
+  // depth and slope terms: the tile pass took 18 % less on room100k than through the whole
+  // receivers, README "Technique benchmark"), the rest from make_receiver.
   template <class Fn>
   void footprints(size_t b, size_t e, const Fn& fn) const {
-    auto visit = [&](int f, vec2 st) {
-      const LightFace& lf = layout.faces[size_t(f)];
-      fn(f, bilinear_taps(st, lf.width, lf.height));
-    };
+    static_assert(kTexelTile == 32, "footprint_tiles8 shifts by 5");
     size_t i = b;
-    if (receivers8)
+    if (tiles8)
       for (; i + 8 <= e; i += 8) {
-        Receivers8 r;
-        receivers8(consts, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], r);
+        FootprintTiles8 t;
+        tiles8(consts, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], 5, t);
         for (int k = 0; k < 8; ++k)
-          if (r.active[k]) visit(r.face[k], vec2(r.sx[k], r.sy[k]));
+          if (t.active[k]) fn(t.face[k], t.tx0[k], t.tx1[k], t.ty0[k], t.ty1[k]);
       }
     const vec3 L = scene.light.position;
     for (; i < e; ++i) {
@@ -139,42 +138,20 @@ struct PixelMarker {
         continue;
       const Receiver r =
           make_receiver(layout, scene.light, p, reach, inv_far, g.position[i], g.geo_normal[i]);
-      visit(r.face, r.st);
+      const LightFace& lf = layout.faces[size_t(r.face)];
+      const Bilinear t = bilinear_taps(r.st, lf.width, lf.height);
+      fn(r.face, t.x0 / kTexelTile, t.x1 / kTexelTile, t.y0 / kTexelTile, t.y1 / kTexelTile);
     }
-  }
-
-  // mark_each's tiles, 8 pixels at a time from their footprints' tiles (footprint_tiles8: the
-  // receivers' texel coordinates without their depth and slope terms, which the tiles do not
-  // need; the tile pass took 18 % less on room100k, README "Technique benchmark"), the rest
-  // through mark_each.
-  void mark_each_fast(size_t b, size_t e) const {
-    static_assert(kTexelTile == 32, "footprint_tiles8 shifts by 5");
-    size_t i = b;
-    int last[5] = {-1, 0, 0, 0, 0};
-    if (tiles8)
-      for (; i + 8 <= e; i += 8) {
-        FootprintTiles8 t;
-        tiles8(consts, &g.position[i].x, &g.geo_normal[i].x, &g.covered[i], 5, t);
-        for (int k = 0; k < 8; ++k) {
-          if (!t.active[k]) continue;
-          const int cur[5] = {t.face[k], t.tx0[k], t.tx1[k], t.ty0[k], t.ty1[k]};
-          if (std::equal(cur, cur + 5, last)) continue;
-          std::copy(cur, cur + 5, last);
-          mark_tiles(tiles, cur[0], cur[1], cur[2], cur[3], cur[4]);
-        }
-      }
-    mark_each(i, e);
   }
 
   // Every pixel's own footprint marked, skipping a pixel whose tiles are its predecessor's.
   void mark_each(size_t b, size_t e) const {
     int last[5] = {-1, 0, 0, 0, 0};
-    footprints(b, e, [&](int f, const Bilinear& t) {
-      const int cur[5] = {f, t.x0 / kTexelTile, t.x1 / kTexelTile, t.y0 / kTexelTile,
-                          t.y1 / kTexelTile};
+    footprints(b, e, [&](int f, int tx0, int tx1, int ty0, int ty1) {
+      const int cur[5] = {f, tx0, tx1, ty0, ty1};
       if (std::equal(cur, cur + 5, last)) return;
       std::copy(cur, cur + 5, last);
-      mark_tiles(tiles, f, cur[1], cur[2], cur[3], cur[4]);
+      mark_tiles(tiles, f, tx0, tx1, ty0, ty1);
     });
   }
 };
@@ -406,7 +383,7 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
     const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
     for (int y = y0; y < y1; ++y) {
       const size_t i = size_t(y) * size_t(g.width);
-      marker.mark_each_fast(i + size_t(x0), i + size_t(x1));
+      marker.mark_each(i + size_t(x0), i + size_t(x1));
     }
   };
   // 2 × 2 blocks at a time first: the box around the four is decided once when its hulls are
