@@ -579,6 +579,41 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
   }
   for (; x < w; ++x) one(x);
 }
+
+// The same in AVX2, 4 texels (one 32-byte store) per step: the AVX2-only machines' fused row
+// (before it, their rows went through vsm_out_k into scratch and interleave_row, two passes).
+template <int K>
+__attribute__((target("avx2"))) void vsm_out_interleaved_avx2(const double* const* rows, int w,
+                                                              double inv, float* out) {
+  auto one = [&](int x) {
+    const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
+    out[2 * x] = float(a);
+    out[2 * x + 1] = float(positive_part(b - a * a));
+  };
+  const int head = texels_to_line(out, 2, w);
+  int x = 0;
+  for (; x < head; ++x) one(x);
+  const double* r[2 * K];
+  for (int j = 0; j < 2 * K; ++j) r[j] = rows[j];
+  const __m256d vinv = _mm256_set1_pd(inv), zero = _mm256_setzero_pd();
+  for (; x + 4 <= w; x += 4) {
+    __m256d a = _mm256_loadu_pd(r[0] + x), b = _mm256_loadu_pd(r[K] + x);
+    for (int j = 1; j < K; ++j) {
+      a = _mm256_add_pd(a, _mm256_loadu_pd(r[j] + x));
+      b = _mm256_add_pd(b, _mm256_loadu_pd(r[K + j] + x));
+    }
+    a = _mm256_mul_pd(a, vinv);
+    b = _mm256_mul_pd(b, vinv);
+    const __m256d v = _mm256_sub_pd(b, _mm256_mul_pd(a, a));
+    // positive_part: v where v > 0, else +0 (a NaN too).
+    const __m256d pv = _mm256_and_pd(v, _mm256_cmp_pd(v, zero, _CMP_GT_OQ));
+    const __m128 mean = _mm256_cvtpd_ps(a), var = _mm256_cvtpd_ps(pv);
+    // texels 0 1 in the low half, 2 3 in the high one.
+    _mm256_storeu_ps(out + 2 * x,
+                     _mm256_set_m128(_mm_unpackhi_ps(mean, var), _mm_unpacklo_ps(mean, var)));
+  }
+  for (; x < w; ++x) one(x);
+}
 #endif
 
 #if defined(__x86_64__)
@@ -637,6 +672,46 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* 
     _mm512_stream_ps(out + 4 * x + 16, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD));  // 4–7
     _mm512_stream_ps(out + 4 * x + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
     _mm512_stream_ps(out + 4 * x + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
+  }
+  for (; x < w; ++x) one(x);
+}
+
+// The same in AVX2, 8 texels (one 4 × 8 transpose, two 64-byte lines of streamed stores) per
+// step: the AVX2-only machines' fused row (before it: mean_out_k into tmp rows,
+// interleave4_row and the stream copy, three passes).
+template <int K>
+__attribute__((target("avx2"))) void msm_out_interleaved_avx2(const float* const* rows, int w,
+                                                              float inv, float* out) {
+  auto one = [&](int x) {
+    for (int c = 0; c < 4; ++c) {
+      float a = rows[c * K][x];
+      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
+      out[4 * x + c] = a * inv;
+    }
+  };
+  const int head = texels_to_line(out, 4, w, w);
+  int x = 0;
+  for (; x < head; ++x) one(x);
+  const float* r[4 * K];
+  for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
+  const __m256 vinv = _mm256_set1_ps(inv);
+  for (; x + 8 <= w; x += 8) {
+    __m256 m[4];
+    for (int c = 0; c < 4; ++c) {
+      __m256 a = _mm256_loadu_ps(r[c * K] + x);
+      for (int j = 1; j < K; ++j) a = _mm256_add_ps(a, _mm256_loadu_ps(r[c * K + j] + x));
+      m[c] = _mm256_mul_ps(a, vinv);
+    }
+    // Within each 128-bit half (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
+    // planes 2 3; u_i texel i's four moments in the low half, texel 4 + i's in the high one.
+    const __m256 t0 = _mm256_unpacklo_ps(m[0], m[1]), t1 = _mm256_unpackhi_ps(m[0], m[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(m[2], m[3]), t3 = _mm256_unpackhi_ps(m[2], m[3]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+    _mm256_stream_ps(out + 4 * x, _mm256_permute2f128_ps(u0, u1, 0x20));       // texels 0 1
+    _mm256_stream_ps(out + 4 * x + 8, _mm256_permute2f128_ps(u2, u3, 0x20));   // 2 3
+    _mm256_stream_ps(out + 4 * x + 16, _mm256_permute2f128_ps(u0, u1, 0x31));  // 4 5
+    _mm256_stream_ps(out + 4 * x + 24, _mm256_permute2f128_ps(u2, u3, 0x31));  // 6 7
   }
   for (; x < w; ++x) one(x);
 }
@@ -784,19 +859,22 @@ void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float*
 
 // Row y's filtered mean and variance from its window of K rows of each plane's horizontal sums
 // (vsm_out_k's operations): straight into the interleaved plane by vsm_out_interleaved_avx512
-// where the plane interleaves two values and AVX-512 is in use (fused512), else through
+// or _avx2 where the plane interleaves two values and that ISA is in use (isa), else through
 // write_mean_var.
 template <int K>
 void vsm_out_row(const MeanVarOut& o, int w, int y, const SpanCols& s, const double* const* win,
-                 double* scratch, double inv, bool fused512) {
+                 double* scratch, double inv, ExpPath isa) {
 #if defined(__x86_64__)
-  if (o.stride == 2 && fused512) {
-    vsm_out_interleaved_avx512<K>(win, s.n, inv,
-                                  o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0)));
+  if (o.stride == 2 && isa != ExpPath::scalar) {
+    float* const row = o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0));
+    if (isa == ExpPath::avx512)
+      vsm_out_interleaved_avx512<K>(win, s.n, inv, row);
+    else
+      vsm_out_interleaved_avx2<K>(win, s.n, inv, row);
     return;
   }
 #else
-  (void)fused512;
+  (void)isa;
 #endif
   write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
                  [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
@@ -813,7 +891,7 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
 #if defined(__x86_64__)
-  const bool fused512 = use_avx512_paths();  // vsm_out_interleaved_avx512 for stride 2
+  const ExpPath isa = exp_path(true);  // vsm_out_interleaved_avx512 / _avx2 for stride 2
 #endif
   if (fixed && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
@@ -825,7 +903,7 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
               hsum_k<K>(ext + ew, s.n, dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-              vsm_out_row<K>(o, w, y, s, win, scratch, inv, fused512);
+              vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
             });
       }))
     return;
@@ -854,7 +932,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
 #if defined(__x86_64__)
-  const bool fused512 = use_avx512_paths();  // vsm_out_interleaved_avx512 for stride 2
+  const ExpPath isa = exp_path(true);  // vsm_out_interleaved_avx512 / _avx2 for stride 2
 #endif
   // Without the slope term, d² is formed inside the horizontal sums from the float row.
   if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
@@ -868,7 +946,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
               hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-              vsm_out_row<K>(o, w, y, s, win, scratch, inv, fused512);
+              vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
             });
       }))
     return;
@@ -1007,7 +1085,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   // lookup 0.2 ms slower (AMD EPYC, README "Technique benchmark").
   const StreamCopy copy = stream_copy_kernel();
 #if defined(__x86_64__)
-  const bool fused512 = interleaved && use_avx512_paths();
+  const ExpPath isa = interleaved ? exp_path(true) : ExpPath::scalar;
 #endif
   auto finish = [&](int y, const SpanCols& s, float* tmp) {
     if (!interleaved) return;
@@ -1026,10 +1104,13 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
             },
             [&](int y, const SpanCols& s, const float* const* win, float* tmp) {
 #if defined(__x86_64__)
-              if (fused512) {
-                msm_out_interleaved_avx512<K>(
-                    win, s.n, inv,
-                    interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0)));
+              if (isa != ExpPath::scalar) {
+                float* const row =
+                    interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0));
+                if (isa == ExpPath::avx512)
+                  msm_out_interleaved_avx512<K>(win, s.n, inv, row);
+                else
+                  msm_out_interleaved_avx2<K>(win, s.n, inv, row);
                 return;
               }
 #endif
