@@ -237,45 +237,45 @@ __attribute__((target("avx2"))) void esm_exp_row_avx2(const float* row, int w, d
   esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
 }
 
-// The warp 16 (AVX-512) and 8 (AVX2) floats at a time by exp_f16 / exp_f8, each half of 8 or 4
-// then in double; min(d, 1) is finite_dist as above.
-__attribute__((target("avx512f"))) void warped_row_avx512(const float* row, int w, double c,
-                                                          double sign, double* m1, double* m2) {
+// EVSM's warp alone, as floats: v[x] = sign·exp_f(float(sign·c)·((d + d) − 1)), the value
+// warped_row_scalar forms (its v is that float, widened; sign = ±1, so the product is exact).
+// The fixed-width path sums these floats' moments by hsum_moments_k (v and v² formed in double
+// there, as VSM's are), so the row kernel writes 4 bytes per texel instead of two doubles' 16.
+// 16 (AVX-512) and 8 (AVX2) floats at a time by exp_f16 / exp_f8; min(d, 1) is finite_dist as
+// above; the tail by the scalar loop.
+SL_ROW_CLONES void warp_row_f_scalar(const float* row, int w, double c, double sign, float* v) {
+  const float sc = float(sign * c), fs = float(sign);
+  for (int x = 0; x < w; ++x) {
+    const float d = finite_dist_bits(row[x]);
+    v[x] = fs * exp_f(sc * ((d + d) - 1.0f));
+  }
+}
+
+__attribute__((target("avx512f"))) void warp_row_f_avx512(const float* row, int w, double c,
+                                                          double sign, float* v) {
   const __m512 one = _mm512_set1_ps(1.0f), sc = _mm512_set1_ps(float(sign * c));
-  const __m512d vs = _mm512_set1_pd(sign);
+  const __m512 fs = _mm512_set1_ps(float(sign));
   int x = 0;
   for (; x + 16 <= w; x += 16) {
     // (Zero-masked forms with every lane on, for GCC 12's -Wmaybe-uninitialized: exp_d8.)
     const __m512 d = _mm512_maskz_min_ps(0xFFFF, _mm512_loadu_ps(row + x), one);
     const __m512 e = exp_f16(_mm512_mul_ps(sc, _mm512_sub_ps(_mm512_add_ps(d, d), one)));
-    const __m256 half[2] = {
-        _mm256_castpd_ps(_mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(e), 0)),
-        _mm256_castpd_ps(_mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(e), 1))};
-    for (int k = 0; k < 2; ++k) {
-      const __m512d v = _mm512_mul_pd(vs, _mm512_maskz_cvtps_pd(0xFF, half[k]));
-      _mm512_storeu_pd(m1 + x + 8 * k, v);
-      _mm512_storeu_pd(m2 + x + 8 * k, _mm512_mul_pd(v, v));
-    }
+    _mm512_storeu_ps(v + x, _mm512_mul_ps(fs, e));
   }
-  warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
+  warp_row_f_scalar(row + x, w - x, c, sign, v + x);
 }
 
-__attribute__((target("avx2"))) void warped_row_avx2(const float* row, int w, double c,
-                                                     double sign, double* m1, double* m2) {
+__attribute__((target("avx2"))) void warp_row_f_avx2(const float* row, int w, double c,
+                                                     double sign, float* v) {
   const __m256 one = _mm256_set1_ps(1.0f), sc = _mm256_set1_ps(float(sign * c));
-  const __m256d vs = _mm256_set1_pd(sign);
+  const __m256 fs = _mm256_set1_ps(float(sign));
   int x = 0;
   for (; x + 8 <= w; x += 8) {
     const __m256 d = _mm256_min_ps(_mm256_loadu_ps(row + x), one);
     const __m256 e = exp_f8(_mm256_mul_ps(sc, _mm256_sub_ps(_mm256_add_ps(d, d), one)));
-    const __m128 half[2] = {_mm256_castps256_ps128(e), _mm256_extractf128_ps(e, 1)};
-    for (int k = 0; k < 2; ++k) {
-      const __m256d v = _mm256_mul_pd(vs, _mm256_cvtps_pd(half[k]));
-      _mm256_storeu_pd(m1 + x + 4 * k, v);
-      _mm256_storeu_pd(m2 + x + 4 * k, _mm256_mul_pd(v, v));
-    }
+    _mm256_storeu_ps(v + x, _mm256_mul_ps(fs, e));
   }
-  warped_row_scalar(row + x, w - x, c, sign, m1 + x, m2 + x);
+  warp_row_f_scalar(row + x, w - x, c, sign, v + x);
 }
 #endif
 
@@ -287,13 +287,12 @@ void esm_exp_row(ExpPath path, const float* row, int w, double c, double d_min, 
   esm_exp_row_scalar(row, w, c, d_min, out);
 }
 
-void warped_row(ExpPath path, const float* row, int w, double c, double sign, double* m1,
-                double* m2) {
+void warp_row_f(ExpPath path, const float* row, int w, double c, double sign, float* v) {
 #if defined(__x86_64__)
-  if (path == ExpPath::avx512) return warped_row_avx512(row, w, c, sign, m1, m2);
-  if (path == ExpPath::avx2) return warped_row_avx2(row, w, c, sign, m1, m2);
+  if (path == ExpPath::avx512) return warp_row_f_avx512(row, w, c, sign, v);
+  if (path == ExpPath::avx2) return warp_row_f_avx2(row, w, c, sign, v);
 #endif
-  warped_row_scalar(row, w, c, sign, m1, m2);
+  warp_row_f_scalar(row, w, c, sign, v);
 }
 
 // MSM's power moments of one row, in float (moment_filter.h says why): p[0..3][x] = d, d²,
@@ -1017,12 +1016,31 @@ namespace {
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
+  const double inv = 1.0 / double(k * k);
   const ExpPath path = exp_path(fixed_kernels);
+  // Fixed widths: the warp as floats, its moments formed in the horizontal sums (VSM's
+  // fixed path, moments_double); the runtime-k oracle keeps the two double rows.
+  if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
+        constexpr int K = decltype(kc)::value;
+        fused_box(
+            w, h, k, 2, tiles, dist,
+            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+              float* const ext_f = reinterpret_cast<float*>(ext);
+              warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
+                         ext_f + s.lead);
+              extend_span(ext_f, s, k);
+              hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
+            },
+            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+              vsm_out_row<K>(o, w, y, s, win, scratch, inv, path);
+            });
+      }))
+    return;
   box_mean_variance(
       w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
-        warped_row(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
-                   ext + s.lead, ext + ew + size_t(s.lead));
+        warped_row_scalar(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
+                          ext + s.lead, ext + ew + size_t(s.lead));
         extend_span(ext, s, k);
         extend_span(ext + ew, s, k);
       },
