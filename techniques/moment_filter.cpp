@@ -537,6 +537,23 @@ inline double sum_rows(const double* const* rows, int x) {
   for (int j = 1; j < K; ++j) a += rows[j][x];
   return a;
 }
+// One texel of the fused output rows, for their heads and tails (the vector steps' operations):
+// VSM's (mean, variance) from rows[0 .. K − 1] and rows[K .. 2K − 1]; MSM's four means from
+// plane c's rows[c·K .. c·K + K − 1], summed in float.
+template <int K>
+inline void vsm_out_texel(const double* const* rows, int x, double inv, float* out) {
+  const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
+  out[2 * x] = float(a);
+  out[2 * x + 1] = float(positive_part(b - a * a));
+}
+template <int K>
+inline void msm_out_texel(const float* const* rows, int x, float inv, float* out) {
+  for (int c = 0; c < 4; ++c) {
+    float a = rows[c * K][x];
+    for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
+    out[4 * x + c] = a * inv;
+  }
+}
 template <int K>
 __attribute__((target("avx512f"))) inline __m512d sum_rows8(const double* const* rows, int x) {
   __m512d a = _mm512_loadu_pd(rows[0] + x);
@@ -555,14 +572,9 @@ template <int K>
 __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double* const* rows,
                                                                    int w, double inv,
                                                                    float* out) {
-  auto one = [&](int x) {
-    const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
-    out[2 * x] = float(a);
-    out[2 * x + 1] = float(positive_part(b - a * a));
-  };
   const int head = texels_to_line(out, 2, w);
   int x = 0;
-  for (; x < head; ++x) one(x);
+  for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
   const __m512d vinv = _mm512_set1_pd(inv), zero = _mm512_setzero_pd();
   for (; x + 8 <= w; x += 8) {
     const __m512d a = _mm512_mul_pd(sum_rows8<K>(rows, x), vinv);
@@ -576,7 +588,7 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
     _mm256_storeu_ps(out + 2 * x, _mm256_permute2f128_ps(lo, hi, 0x20));
     _mm256_storeu_ps(out + 2 * x + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
   }
-  for (; x < w; ++x) one(x);
+  for (; x < w; ++x) vsm_out_texel<K>(rows, x, inv, out);
 }
 
 // The same in AVX2, 4 texels (one 32-byte store) per step: the AVX2-only machines' fused row
@@ -584,14 +596,9 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
 template <int K>
 __attribute__((target("avx2"))) void vsm_out_interleaved_avx2(const double* const* rows, int w,
                                                               double inv, float* out) {
-  auto one = [&](int x) {
-    const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
-    out[2 * x] = float(a);
-    out[2 * x + 1] = float(positive_part(b - a * a));
-  };
   const int head = texels_to_line(out, 2, w);
   int x = 0;
-  for (; x < head; ++x) one(x);
+  for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
   const double* r[2 * K];
   for (int j = 0; j < 2 * K; ++j) r[j] = rows[j];
   const __m256d vinv = _mm256_set1_pd(inv), zero = _mm256_setzero_pd();
@@ -611,7 +618,7 @@ __attribute__((target("avx2"))) void vsm_out_interleaved_avx2(const double* cons
     _mm256_storeu_ps(out + 2 * x,
                      _mm256_set_m128(_mm_unpackhi_ps(mean, var), _mm_unpacklo_ps(mean, var)));
   }
-  for (; x < w; ++x) one(x);
+  for (; x < w; ++x) vsm_out_texel<K>(rows, x, inv, out);
 }
 #endif
 
@@ -627,18 +634,11 @@ template <int K>
 __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* const* rows,
                                                                    int w, float inv,
                                                                    float* out) {
-  auto one = [&](int x) {
-    for (int c = 0; c < 4; ++c) {
-      float a = rows[c * K][x];
-      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
-      out[4 * x + c] = a * inv;
-    }
-  };
   // Non-temporal stores need aligned addresses: a row that cannot reach a line on a texel
   // boundary (never for the map's 16-byte aligned storage) goes one texel at a time.
   const int head = texels_to_line(out, 4, w, w);
   int x = 0;
-  for (; x < head; ++x) one(x);
+  for (; x < head; ++x) msm_out_texel<K>(rows, x, inv, out);
   // The row pointers in locals: through `rows` they would be reloaded after every store.
   const float* r[4 * K];
   for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
@@ -672,7 +672,7 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* 
     _mm512_stream_ps(out + 4 * x + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
     _mm512_stream_ps(out + 4 * x + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
   }
-  for (; x < w; ++x) one(x);
+  for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
 }
 
 // The same in AVX2, 8 texels (one 4 × 8 transpose, two 64-byte lines of streamed stores) per
@@ -681,16 +681,9 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* 
 template <int K>
 __attribute__((target("avx2"))) void msm_out_interleaved_avx2(const float* const* rows, int w,
                                                               float inv, float* out) {
-  auto one = [&](int x) {
-    for (int c = 0; c < 4; ++c) {
-      float a = rows[c * K][x];
-      for (int j = 1; j < K; ++j) a += rows[c * K + j][x];
-      out[4 * x + c] = a * inv;
-    }
-  };
   const int head = texels_to_line(out, 4, w, w);
   int x = 0;
-  for (; x < head; ++x) one(x);
+  for (; x < head; ++x) msm_out_texel<K>(rows, x, inv, out);
   const float* r[4 * K];
   for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
   const __m256 vinv = _mm256_set1_ps(inv);
@@ -712,7 +705,7 @@ __attribute__((target("avx2"))) void msm_out_interleaved_avx2(const float* const
     _mm256_stream_ps(out + 4 * x + 16, _mm256_permute2f128_ps(u0, u1, 0x31));  // 4 5
     _mm256_stream_ps(out + 4 * x + 24, _mm256_permute2f128_ps(u2, u3, 0x31));  // 6 7
   }
-  for (; x < w; ++x) one(x);
+  for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
 }
 #endif
 
@@ -925,29 +918,41 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
       });
 }
 
+// The fixed-width box of a float row's two moments: make_row(y, span, in) writes the span's
+// span.in_n input floats at `in` (finite distances for VSM, EVSM's warp), then the row is
+// clamped at its ends and hsum_moments_k forms each value and its square in double inside the
+// horizontal sums; the output rows by vsm_out_row (its fused kernels per `isa`). False, having
+// done nothing, for a width without a fixed kernel.
+template <class MakeRow>
+bool float_moments_fixed(int w, int h, int k, const FaceTiles* tiles, const float* src,
+                         ExpPath isa, const MeanVarOut& o, const MakeRow& make_row) {
+  const double inv = 1.0 / double(k * k);
+  return with_fixed_width(k, [&](auto kc) {
+    constexpr int K = decltype(kc)::value;
+    fused_box(
+        w, h, k, 2, tiles, src,
+        [&](int y, const SpanCols& s, double* const* dst, double* ext) {
+          float* const ext_f = reinterpret_cast<float*>(ext);
+          make_row(y, s, ext_f + s.lead);
+          extend_span(ext_f, s, k);
+          hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
+        },
+        [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
+          vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
+        });
+  });
+}
+
 void moments_double(const float* dist, int w, int h, int k, bool slope_term, bool fixed_kernels,
                     const FaceTiles* tiles, const MeanVarOut& o) {
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
-  const double inv = 1.0 / double(k * k);
-#if defined(__x86_64__)
-  const ExpPath isa = exp_path(true);  // vsm_out_interleaved_avx512 / _avx2 for stride 2
-#endif
   // Without the slope term, d² is formed inside the horizontal sums from the float row.
-  if (fixed_kernels && !slope_term && with_fixed_width(k, [&](auto kc) {
-        constexpr int K = decltype(kc)::value;
-        fused_box(
-            w, h, k, 2, tiles, dist,
-            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
-              float* const ext_f = reinterpret_cast<float*>(ext);
-              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext_f + s.lead);
-              extend_span(ext_f, s, k);
-              hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
-            },
-            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-              vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
-            });
-      }))
+  if (fixed_kernels && !slope_term &&
+      float_moments_fixed(w, h, k, tiles, dist, exp_path(true), o,
+                          [&](int y, const SpanCols& s, float* in) {
+                            finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, in);
+                          }))
     return;
   auto at = [&](int x, int y) {
     return double(finite_dist(dist[size_t(std::clamp(y, 0, h - 1)) * size_t(w) +
@@ -1016,26 +1021,17 @@ namespace {
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
-  const double inv = 1.0 / double(k * k);
-  const ExpPath path = exp_path(fixed_kernels);
   // Fixed widths: the warp as floats, its moments formed in the horizontal sums (VSM's
-  // fixed path, moments_double); the runtime-k oracle keeps the two double rows.
-  if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
-        constexpr int K = decltype(kc)::value;
-        fused_box(
-            w, h, k, 2, tiles, dist,
-            [&](int y, const SpanCols& s, double* const* dst, double* ext) {
-              float* const ext_f = reinterpret_cast<float*>(ext);
-              warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
-                         ext_f + s.lead);
-              extend_span(ext_f, s, k);
-              hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
-            },
-            [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-              vsm_out_row<K>(o, w, y, s, win, scratch, inv, path);
-            });
-      }))
-    return;
+  // fixed path); the runtime-k oracle keeps the two double rows.
+  if (fixed_kernels) {
+    const ExpPath path = exp_path(true);
+    if (float_moments_fixed(w, h, k, tiles, dist, path, o,
+                            [&](int y, const SpanCols& s, float* in) {
+                              warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0),
+                                         s.in_n, c, sign, in);
+                            }))
+      return;
+  }
   box_mean_variance(
       w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
