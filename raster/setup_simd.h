@@ -1,5 +1,6 @@
 #pragma once
-// Triangle setup for 8 triangles at once (AVX-512, double and int64 lanes): setup_triangle's
+// Triangle setup for 8 triangles at once (AVX-512 with double and int64 lanes, or AVX2 with
+// double lanes): setup_triangle's
 // operations for triangles that need no clipping (ClipClass::Inside: their vertices are the
 // original ones, barycentrics the unit vectors), lane by lane in the same order, so each
 // surviving triangle's TriangleSetup has the scalar setup's bits (tests/raster/
@@ -24,9 +25,14 @@ struct SetupBatch8 {
 using SetupBatch8Fn = int (*)(const SetupBatch8& b, int width, int height, CullMode cull,
                               TriangleSetup* out, RasterStats& stats);
 
-// The AVX-512 form (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced
-// (SHADOWLAB_ISA=avx2, SHADOWLAB_SCALAR=1).
+// The widest form in use: AVX-512 (F, DQ) unless the CPU lacks it or SHADOWLAB_ISA=avx2 keeps
+// the narrower paths, else AVX2 (double lanes, see setup_simd.cpp), or nullptr when the CPU
+// lacks AVX2 or SHADOWLAB_SCALAR=1 forces the oracles.
 SetupBatch8Fn setup_batch8_simd();
+
+// The AVX2 form whenever the CPU runs it, whatever is forced: for the tests, so that an
+// AVX-512 machine checks it too.
+SetupBatch8Fn setup_batch8_avx2_form();
 
 // The same through setup_triangle, lane by lane: the oracle.
 int setup_batch8_scalar(const SetupBatch8& b, int width, int height, CullMode cull,

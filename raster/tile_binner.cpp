@@ -93,8 +93,8 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
   const size_t chunk_count = (total + kChunkTriangles - 1) / kChunkTriangles;
   frame.chunks.resize(chunk_count);
   std::vector<RasterStats> chunk_stats(chunk_count);
-  // Triangles that need no clipping are set up 8 at a time where AVX-512 is in use (the same
-  // bits as setup_triangle), in submission order: a clipped triangle first flushes the batch.
+  // Triangles that need no clipping are set up 8 at a time where AVX2 or AVX-512 is in use (the
+  // same bits as setup_triangle), in submission order: a clipped triangle first flushes the batch.
   const SetupBatch8Fn setup8 = setup_batch8_simd();
   parallel_for(0, chunk_count, [&](size_t ci) {
     BinnedChunk& chunk = frame.chunks[ci];

@@ -1,5 +1,5 @@
-// The 8-triangle AVX-512 setup against setup_triangle, triangle by triangle: the same
-// survivors in the same order, every field of every record bit for bit, the same counts.
+// The 8-triangle setups (AVX-512 and AVX2) against setup_triangle, triangle by triangle: the
+// same survivors in the same order, every field of every record bit for bit, the same counts.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -10,21 +10,26 @@
 namespace shadowlab {
 namespace {
 
-TEST(SetupSimd, BatchesGiveTheScalarSetupsBitForBit) {
-  const SetupBatch8Fn fast = setup_batch8_simd();
-  if (!fast) GTEST_SKIP() << "no AVX-512 path on this CPU (or a narrower one forced)";
+// Every triangle of 20,000 random batches through `fast` and through the scalar setup.
+void expect_scalar_bits(SetupBatch8Fn fast) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f), wdist(0.05f, 20.0f);
   size_t survived = 0, degenerate = 0, culled = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const int width = trial % 3 == 0 ? 509 : 1024, height = trial % 5 == 0 ? 77 : 768;
+    // Every 7th batch on a 2^20 × 2^20-pixel viewport: its corners reach 2^28 sub-pixel units,
+    // where the area's products are no longer exact in double and the AVX2 form must hand the
+    // batch to the scalar setup.
+    const int width = trial % 7 == 0 ? 1 << 20 : trial % 3 == 0 ? 509 : 1024;
+    const int height = trial % 7 == 0 ? 1 << 20 : trial % 5 == 0 ? 77 : 768;
     const CullMode cull = trial % 4 == 0 ? CullMode::Back : trial % 4 == 1 ? CullMode::Front
                                                                          : CullMode::None;
     SetupBatch8 b;
     b.count = 1 + trial % 8;
     // Triangles of every size: a centre in (or beyond) the viewport, corners from a scale of
     // 1e-4 pixel (sub-pixel, snapped to zero area) to beyond the viewport; some share a vertex.
-    const float scale = std::pow(10.0f, float(trial % 9) - 4.0f) / float(width);
+    // On the wide viewport, corners up to a quarter of it apart: edge products past 2^53.
+    const float scale =
+        trial % 7 == 0 ? 0.5f : std::pow(10.0f, float(trial % 9) - 4.0f) / float(width);
     for (int k = 0; k < b.count; ++k) {
       const float cx = 1.5f * u(rng), cy = 1.5f * u(rng);
       for (int v = 0; v < 3; ++v) {
@@ -55,11 +60,24 @@ TEST(SetupSimd, BatchesGiveTheScalarSetupsBitForBit) {
     degenerate += sw.dropped_degenerate;
     culled += sw.culled_facing;
   }
-  RecordProperty("outcomes", std::to_string(survived) + " set up, " + std::to_string(degenerate) +
+  ::testing::Test::RecordProperty("outcomes", std::to_string(survived) + " set up, " + std::to_string(degenerate) +
                                  " degenerate or empty, " + std::to_string(culled) + " culled");
   EXPECT_GT(survived, 10000u);
   EXPECT_GT(degenerate, 10000u);
   EXPECT_GT(culled, 5000u);
+}
+
+TEST(SetupSimd, BatchesGiveTheScalarSetupsBitForBit) {
+  const SetupBatch8Fn fast = setup_batch8_simd();
+  if (!fast) GTEST_SKIP() << "no SIMD setup on this CPU (or the scalar one forced)";
+  expect_scalar_bits(fast);
+}
+
+// The AVX2 form on its own, also where the AVX-512 one is in use.
+TEST(SetupSimd, Avx2BatchesGiveTheScalarSetupsBitForBit) {
+  const SetupBatch8Fn fast = setup_batch8_avx2_form();
+  if (!fast) GTEST_SKIP() << "no AVX2 on this CPU";
+  expect_scalar_bits(fast);
 }
 
 }  // namespace
