@@ -7,7 +7,9 @@
 //   1. Bias: b = (1 − α)·m + α·(½, ½, ½, ½), which keeps the Hankel matrix
 //      B = [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]] positive definite when rounding (fp32 or
 //      16-bit storage) or a single depth in the footprint makes it singular.
-//   2. Solve B·c = (1, z, z²) by B = L·D·Lᵀ (Cholesky without square roots).
+//   2. Solve B·c = (1, z, z²) by B = L·D·Lᵀ (Cholesky without square roots), carried out
+//      scaled by k = d22²·d33 (D's pivots): k·c needs no division, and step 3 only needs c
+//      up to scale (README "Technique benchmark": five of the seven divisions gone).
 //   3. The roots z2 <= z3 of c1 + c2·x + c3·x² are, with z, the atoms of the distribution with
 //      moments b that has an atom at z (its canonical representation).
 //   4. Hamburger (support ℝ): G = 0 when z <= z2; the weight of z2 when z2 < z <= z3; one minus
@@ -28,24 +30,28 @@
 
 namespace shadowlab {
 
-// Solution c of B·c = (1, z, z²) for biased moments b[0..3] = (b1, b2, b3, b4).
+// Solution c of B·c = (1, z, z²) for biased moments b[0..3] = (b1, b2, b3, b4), scaled by
+// k = d22²·d33 > 0 (B positive definite): c = (c1, c2, c3) / k.
 struct HankelSolution {
-  double c1, c2, c3;
+  double c1, c2, c3, k;
 };
 
 inline HankelSolution hankel_solve(const double b[4], double z) {
-  // B = L·D·Lᵀ with L = [[1, 0, 0], [b1, 1, 0], [b2, l32, 1]], D = diag(1, d22, d33).
+  // B = L·D·Lᵀ with L = [[1, 0, 0], [b1, 1, 0], [b2, l32, 1]], D = diag(1, d22, d33),
+  // l32 = e32 / d22. Every quantity that would be divided by d22 is kept multiplied by it:
+  // s33 = d22·d33 = d22·(b4 − b2²) − e32², and y3s = d22·y3 from the forward pass
+  // (L·y = (1, z, z²)). Backward (Lᵀ·c = D⁻¹·y) times k = d22·s33:
+  // k·c3 = d22·y3s, k·c2 = s33·y2 − e32·y3s, k·c1 = k − b1·(k·c2) − b2·(k·c3).
   const double d22 = b[1] - b[0] * b[0];
-  const double e32 = b[2] - b[0] * b[1];  // l32·d22
-  const double l32 = e32 / d22;
-  const double d33 = (b[3] - b[1] * b[1]) - l32 * e32;
-  // Forward (L·y = (1, z, z²)), scale (D), backward (Lᵀ·c = y).
+  const double e32 = b[2] - b[0] * b[1];
+  const double s33 = d22 * (b[3] - b[1] * b[1]) - e32 * e32;
   const double y2 = z - b[0];
-  const double y3 = (z * z - b[1]) - l32 * y2;
-  const double c3 = y3 / d33;
-  const double c2 = y2 / d22 - l32 * c3;
-  const double c1 = (1.0 - b[0] * c2) - b[1] * c3;
-  return {c1, c2, c3};
+  const double y3s = d22 * (z * z - b[1]) - e32 * y2;
+  const double k = d22 * s33;
+  const double c3 = d22 * y3s;
+  const double c2 = s33 * y2 - e32 * y3s;
+  const double c1 = (k - b[0] * c2) - b[1] * c3;
+  return {c1, c2, c3, k};
 }
 
 // The biased moments of step 1.
@@ -59,13 +65,21 @@ inline double msm_intensity(const double m[4], double z, double alpha, bool haus
   double b[4];
   msm_bias(m, alpha, b);
   const HankelSolution c = hankel_solve(b, z);
-  const double p = c.c2 / c.c3, q = c.c1 / c.c3;
+  // The quadratic's roots do not depend on its scale: p = c2/c3 and q = c1/c3 from the scaled
+  // solution, through one reciprocal.
+  const double inv = 1.0 / c.c3;
+  const double p = c.c2 * inv, q = c.c1 * inv;
   const double r = std::sqrt(p * p * 0.25 - q);
   const double z2 = -0.5 * p - r, z3 = -0.5 * p + r;
-  // Weight of z2 (z between the roots) and one minus the weight of z (z beyond both).
-  const double g_mid = ((z * z3 - b[0] * (z + z3)) + b[1]) / ((z3 - z2) * (z - z2));
-  const double g_far = 1.0 - ((z2 * z3 - b[0] * (z2 + z3)) + b[1]) / ((z - z2) * (z - z3));
-  double g = z <= z2 ? 0.0 : (z <= z3 ? g_mid : g_far);
+  // Weight of z2 (z between the roots) or one minus the weight of z (z beyond both): one
+  // division of the operands that z's branch selects (the vector forms select before dividing,
+  // which gives these bits).
+  const bool mid = z <= z3;
+  const double num =
+      mid ? ((z * z3 - b[0] * (z + z3)) + b[1]) : ((z2 * z3 - b[0] * (z2 + z3)) + b[1]);
+  const double den = mid ? ((z3 - z2) * (z - z2)) : ((z - z2) * (z - z3));
+  const double w = num / den;
+  double g = z <= z2 ? 0.0 : (mid ? w : 1.0 - w);
   if (hausdorff && (z2 < 0.0 || z3 > 1.0)) {
     // Atoms 0, z, u, 1: E[x(x − 1)(x − z)(x − u)] = 0 fixes u; w0 and w_u by Lagrange.
     const double zp1 = z + 1.0;
@@ -130,28 +144,25 @@ SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z,
   using namespace msm_simd;
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
   const __m256d keep = _mm256_set1_pd(1.0 - alpha), pull = _mm256_set1_pd(0.5 * alpha);
-  __m256d b[N][4], d22[N], e32[N], l32[N], d33[N], y2[N], y3[N], c1[N], c2[N], c3[N];
+  __m256d b[N][4], d22[N], e32[N], s33[N], y2[N], y3s[N], c1[N], c2[N], c3[N];
   __m256d p[N], q[N], r[N], z2[N], z3[N], g[N];
   for (int h = 0; h < N; ++h)
     for (int i = 0; i < 4; ++i) b[h][i] = add(mul(m[h][i], keep), pull);
+  // hankel_solve's scaled solve, then the one reciprocal.
   for (int h = 0; h < N; ++h) {
     d22[h] = sub(b[h][1], mul(b[h][0], b[h][0]));
     e32[h] = sub(b[h][2], mul(b[h][0], b[h][1]));
-  }
-  for (int h = 0; h < N; ++h) l32[h] = div(e32[h], d22[h]);
-  for (int h = 0; h < N; ++h) {
-    d33[h] = sub(sub(b[h][3], mul(b[h][1], b[h][1])), mul(l32[h], e32[h]));
+    s33[h] = sub(mul(d22[h], sub(b[h][3], mul(b[h][1], b[h][1]))), mul(e32[h], e32[h]));
     y2[h] = sub(z[h], b[h][0]);
-    y3[h] = sub(sub(mul(z[h], z[h]), b[h][1]), mul(l32[h], y2[h]));
-  }
-  for (int h = 0; h < N; ++h) c3[h] = div(y3[h], d33[h]);
-  for (int h = 0; h < N; ++h) {
-    c2[h] = sub(div(y2[h], d22[h]), mul(l32[h], c3[h]));
-    c1[h] = sub(sub(one, mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
+    y3s[h] = sub(mul(d22[h], sub(mul(z[h], z[h]), b[h][1])), mul(e32[h], y2[h]));
+    c3[h] = mul(d22[h], y3s[h]);
+    c2[h] = sub(mul(s33[h], y2[h]), mul(e32[h], y3s[h]));
+    c1[h] = sub(sub(mul(d22[h], s33[h]), mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
   }
   for (int h = 0; h < N; ++h) {
-    p[h] = div(c2[h], c3[h]);
-    q[h] = div(c1[h], c3[h]);
+    const __m256d inv = div(one, c3[h]);
+    p[h] = mul(c2[h], inv);
+    q[h] = mul(c1[h], inv);
   }
   for (int h = 0; h < N; ++h)
     r[h] = _mm256_sqrt_pd(sub(mul(mul(p[h], p[h]), _mm256_set1_pd(0.25)), q[h]));
@@ -161,13 +172,18 @@ SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z,
     z3[h] = add(hp, r[h]);
   }
   for (int h = 0; h < N; ++h) {
+    // The weight's operands selected by branch, then one division (msm_intensity's bits).
     const __m256d zh = z[h], bh0 = b[h][0], bh1 = b[h][1];
-    const __m256d g_mid = div(add(sub(mul(zh, z3[h]), mul(bh0, add(zh, z3[h]))), bh1),
-                              mul(sub(z3[h], z2[h]), sub(zh, z2[h])));
-    const __m256d g_far =
-        sub(one, div(add(sub(mul(z2[h], z3[h]), mul(bh0, add(z2[h], z3[h]))), bh1),
-                     mul(sub(zh, z2[h]), sub(zh, z3[h]))));
-    g[h] = _mm256_blendv_pd(g_far, g_mid, _mm256_cmp_pd(zh, z3[h], _CMP_LE_OQ));
+    const __m256d mid = _mm256_cmp_pd(zh, z3[h], _CMP_LE_OQ);
+    // Both numerators are (x·z3 − b1·(x + z3)) + b2, x = z or z2; both denominators
+    // (z − z2)·(a − c), (a, c) = (z3, z2) or (z, z3) (a product's bits do not depend on its
+    // order).
+    const __m256d x = _mm256_blendv_pd(z2[h], zh, mid);
+    const __m256d num = add(sub(mul(x, z3[h]), mul(bh0, add(x, z3[h]))), bh1);
+    const __m256d den = mul(sub(zh, z2[h]), sub(_mm256_blendv_pd(zh, z3[h], mid),
+                                                 _mm256_blendv_pd(z3[h], z2[h], mid)));
+    const __m256d w = div(num, den);
+    g[h] = _mm256_blendv_pd(sub(one, w), w, mid);
     g[h] = _mm256_blendv_pd(g[h], zero, _mm256_cmp_pd(zh, z2[h], _CMP_LE_OQ));
   }
   if (hausdorff) {
@@ -202,7 +218,7 @@ SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z,
 // msm_intensity for N groups of 8 lanes (AVX-512 F and DQ): msm_intensity4n's operations with
 // compare masks for its blends, so each lane gets the scalar bits; a division costs the same per
 // instruction as in AVX2 on the machines we measure (AMD EPYC: ~1.15 ns either way), so 8 lanes
-// halve the six divisions' share of the MSM lookup. The chain of divisions and the square root is
+// halve the divisions' share of the MSM lookup. The chain of divisions and the square root is
 // serial within a group; N > 1 issues independent groups' steps side by side so that one group's
 // division runs while another's waits (the lookup takes 4 groups: README "Technique benchmark").
 template <int N>
@@ -211,28 +227,25 @@ SL_MSM_AVX512 inline void msm_intensity8n(const __m512d (*m)[4], const __m512d* 
   using namespace msm_simd;
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
   const __m512d keep = _mm512_set1_pd(1.0 - alpha), pull = _mm512_set1_pd(0.5 * alpha);
-  __m512d b[N][4], d22[N], e32[N], l32[N], d33[N], y2[N], y3[N], c1[N], c2[N], c3[N];
+  __m512d b[N][4], d22[N], e32[N], s33[N], y2[N], y3s[N], c1[N], c2[N], c3[N];
   __m512d p[N], q[N], r[N], z2[N], z3[N], g[N];
   for (int h = 0; h < N; ++h)
     for (int i = 0; i < 4; ++i) b[h][i] = add(mul(m[h][i], keep), pull);
+  // hankel_solve's scaled solve, then the one reciprocal.
   for (int h = 0; h < N; ++h) {
     d22[h] = sub(b[h][1], mul(b[h][0], b[h][0]));
     e32[h] = sub(b[h][2], mul(b[h][0], b[h][1]));
-  }
-  for (int h = 0; h < N; ++h) l32[h] = div(e32[h], d22[h]);
-  for (int h = 0; h < N; ++h) {
-    d33[h] = sub(sub(b[h][3], mul(b[h][1], b[h][1])), mul(l32[h], e32[h]));
+    s33[h] = sub(mul(d22[h], sub(b[h][3], mul(b[h][1], b[h][1]))), mul(e32[h], e32[h]));
     y2[h] = sub(z[h], b[h][0]);
-    y3[h] = sub(sub(mul(z[h], z[h]), b[h][1]), mul(l32[h], y2[h]));
-  }
-  for (int h = 0; h < N; ++h) c3[h] = div(y3[h], d33[h]);
-  for (int h = 0; h < N; ++h) {
-    c2[h] = sub(div(y2[h], d22[h]), mul(l32[h], c3[h]));
-    c1[h] = sub(sub(one, mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
+    y3s[h] = sub(mul(d22[h], sub(mul(z[h], z[h]), b[h][1])), mul(e32[h], y2[h]));
+    c3[h] = mul(d22[h], y3s[h]);
+    c2[h] = sub(mul(s33[h], y2[h]), mul(e32[h], y3s[h]));
+    c1[h] = sub(sub(mul(d22[h], s33[h]), mul(b[h][0], c2[h])), mul(b[h][1], c3[h]));
   }
   for (int h = 0; h < N; ++h) {
-    p[h] = div(c2[h], c3[h]);
-    q[h] = div(c1[h], c3[h]);
+    const __m512d inv = div(one, c3[h]);
+    p[h] = mul(c2[h], inv);
+    q[h] = mul(c1[h], inv);
   }
   // The zero-masked square root with every lane on: GCC 12's unmasked one passes an undefined
   // source that -Wuninitialized reports (the same instruction either way).
@@ -244,13 +257,16 @@ SL_MSM_AVX512 inline void msm_intensity8n(const __m512d (*m)[4], const __m512d* 
     z3[h] = add(hp, r[h]);
   }
   for (int h = 0; h < N; ++h) {
+    // The weight's operands selected by branch, then one division (msm_intensity's bits).
     const __m512d zh = z[h], bh0 = b[h][0], bh1 = b[h][1];
-    const __m512d g_mid = div(add(sub(mul(zh, z3[h]), mul(bh0, add(zh, z3[h]))), bh1),
-                              mul(sub(z3[h], z2[h]), sub(zh, z2[h])));
-    const __m512d g_far =
-        sub(one, div(add(sub(mul(z2[h], z3[h]), mul(bh0, add(z2[h], z3[h]))), bh1),
-                     mul(sub(zh, z2[h]), sub(zh, z3[h]))));
-    g[h] = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(zh, z3[h], _CMP_LE_OQ), g_far, g_mid);
+    const __mmask8 mid = _mm512_cmp_pd_mask(zh, z3[h], _CMP_LE_OQ);
+    // The operands selected as in msm_intensity4n.
+    const __m512d x = _mm512_mask_blend_pd(mid, z2[h], zh);
+    const __m512d num = add(sub(mul(x, z3[h]), mul(bh0, add(x, z3[h]))), bh1);
+    const __m512d den = mul(sub(zh, z2[h]), sub(_mm512_mask_blend_pd(mid, zh, z3[h]),
+                                                 _mm512_mask_blend_pd(mid, z3[h], z2[h])));
+    const __m512d w = div(num, den);
+    g[h] = _mm512_mask_blend_pd(mid, sub(one, w), w);
     g[h] = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(zh, z2[h], _CMP_LE_OQ), g[h], zero);
   }
   if (hausdorff) {

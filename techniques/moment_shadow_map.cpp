@@ -110,23 +110,27 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
 
 #if defined(__x86_64__)
 #define SL_AVX2 __attribute__((target("avx2")))
-// msm_value for the 8 lanes of a batch, in two halves of 4 doubles: its operations in its
-// order, the halves' reconstructions side by side (msm_intensity4n<2>).
-SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const float* fx,
-                            const float* fy, const float* depth, float* out) {
+// msm_value for the 8 lanes of each of N batches, each batch in two halves of 4 doubles: its
+// operations in its order, the 2N halves' reconstructions side by side (msm_intensity4n<2N>:
+// N > 1 overlaps the batches' chains of divisions, as msm_batch_avx512 does).
+template <int N>
+SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*const* v)[4][8],
+                            const float* const* fx, const float* const* fy,
+                            const float* const* depth, float* const* out) {
   const __m256d one = _mm256_set1_pd(1.0);
-  __m256d m[2][4], z[2], g[2];
-  for (int half = 0; half < 2; ++half) {
-    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
-    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
+  __m256d m[2 * N][4], z[2 * N], g[2 * N];
+  for (int hh = 0; hh < 2 * N; ++hh) {
+    const int h = hh / 2, half = hh % 2;
+    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx[h] + 4 * half));
+    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy[h] + 4 * half));
     __m256d w[4];
     bilinear_weights4(vx, vy, w);
-    __m256d* mh = m[half];
+    __m256d* mh = m[hh];
     for (int j = 0; j < 4; ++j) {
       mh[j] = _mm256_setzero_pd();
       for (int i = 0; i < 4; ++i)
         mh[j] = _mm256_add_pd(
-            mh[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[j][i] + 4 * half))));
+            mh[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[h][j][i] + 4 * half))));
     }
     if (k.quantize16) {
       // msm_decode16's operations, lane by lane.
@@ -139,11 +143,11 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*v)[4][8], const fl
         mh[j] = s;
       }
     }
-    z[half] = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
+    z[hh] = _mm256_cvtps_pd(_mm_loadu_ps(depth[h] + 4 * half));
   }
-  msm_intensity4n<2>(m, z, k.alpha, k.hausdorff, g);
-  for (int half = 0; half < 2; ++half)
-    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(_mm256_sub_pd(one, g[half])));
+  msm_intensity4n<2 * N>(m, z, k.alpha, k.hausdorff, g);
+  for (int hh = 0; hh < 2 * N; ++hh)
+    _mm_storeu_ps(out[hh / 2] + 4 * (hh % 2), _mm256_cvtpd_ps(_mm256_sub_pd(one, g[hh])));
 }
 #undef SL_AVX2
 
@@ -201,7 +205,8 @@ struct MsmBatch {
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
   bool avx512;  // the reconstruction in 8 lanes (use_avx512_paths) or in two halves of 4
-  bool grouped() const { return avx512; }
+  static constexpr int kAvx2Groups = 2;  // batches per msm_batch_avx2 call in groups()
+  bool grouped() const { return true; }
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
     if (prefetch8) prefetch8(c, r, moments, 4);
   }
@@ -214,10 +219,10 @@ struct MsmBatch {
     if (avx512)
       msm_batch_avx512<1>(k, &vp, &fxp, &fyp, &dp, &out);
     else
-      msm_batch_avx2(k, v, fx, fy, r.depth, out);
+      msm_batch_avx2<1>(k, &vp, &fxp, &fyp, &dp, &out);
 #endif
   }
-  // kGroups batches at once (only when grouped()).
+  // kGroups batches at once: in 8 lanes with AVX-512, else kAvx2Groups at a time in halves of 4.
   void groups(const MapLookupConsts& c, const Receivers8* r, float (*out)[8]) const {
 #if defined(__x86_64__)
     constexpr int G = kGroups;
@@ -233,7 +238,11 @@ struct MsmBatch {
       dp[h] = r[h].depth;
       op[h] = out[h];
     }
-    msm_batch_avx512<G>(k, vp, fxp, fyp, dp, op);
+    if (avx512)
+      msm_batch_avx512<G>(k, vp, fxp, fyp, dp, op);
+    else
+      for (int h = 0; h < G; h += kAvx2Groups)
+        msm_batch_avx2<kAvx2Groups>(k, vp + h, fxp + h, fyp + h, dp + h, op + h);
 #endif
   }
 };
