@@ -65,6 +65,9 @@ SL_AVX2 inline __m256 plane_x_avx2(float z_dx, int ox) {
 struct PlaneRows {
   float z0, z_dy;
   int oy, rows;
+  // The AVX2 walk's rows' y terms, z0 + z_dy · float(oy + r) for r < rows, made once per row of
+  // blocks and shared by its blocks (the AVX2 block functions read them; AVX-512 does not).
+  const float* zy = nullptr;
 };
 
 // The rows of one block, AVX2: lo/hi hold each edge's lanes 0-3 and 4-7 at the first row, and
@@ -88,9 +91,8 @@ SL_AVX2 inline void block_rows_avx2(__m256i* lo, __m256i* hi, const __m256i* dy,
     }
     const __m256i covered = _mm256_cmpeq_epi32(
         _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
-    const float zy = p.z0 + p.z_dy * float(p.oy + r);
     const __m256 iw =
-        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(p.zy[r]), zx), z_lo), z_hi);
     float* row = z + size_t(r) * stride;
     const __m256 old = _mm256_loadu_ps(row);
     const __m256 nearer =
@@ -119,9 +121,8 @@ SL_AVX2 inline void block_rows_avx2_i32(__m256i* ev, const __m256i* dy, bool ins
       covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(any, minus_one));
       for (int k = 0; k < 3; ++k) ev[k] = _mm256_add_epi32(ev[k], dy[k]);
     }
-    const float zy = p.z0 + p.z_dy * float(p.oy + r);
     const __m256 iw =
-        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
+        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(p.zy[r]), zx), z_lo), z_hi);
     float* row = z + size_t(r) * stride;
     const __m256 old = _mm256_loadu_ps(row);
     const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), covered);
@@ -189,7 +190,10 @@ SL_AVX2 static void depth_triangle_avx2_impl(const TriangleSetup& s, int x0, int
   const int by_start = min_y - (min_y - y0) % kBlock;
   for (int by = by_start; by <= max_y; by += kBlock) {
     const int py0 = std::max(by, min_y), py1 = std::min(by + kBlock - 1, max_y);
-    const PlaneRows p{s.z0, s.z_dy, py0 - s.min_y, py1 - py0 + 1};
+    const int oy = py0 - s.min_y, rows = py1 - py0 + 1;
+    float zy[kBlock];
+    for (int r = 0; r < rows; ++r) zy[r] = s.z0 + s.z_dy * float(oy + r);
+    const PlaneRows p{s.z0, s.z_dy, oy, rows, zy};
     int64_t e[3], lo_off[3], hi_off[3];
     for (int k = 0; k < 3; ++k) {
       e[k] = s.a[k] * (int64_t(bx_start) * one + half) + s.b[k] * (int64_t(py0) * one + half) +
