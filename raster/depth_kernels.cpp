@@ -1,7 +1,6 @@
 #include "raster/depth_kernels.h"
 
 #include <algorithm>
-#include <climits>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -22,6 +21,13 @@ DepthIsa depth_isa() {
                               : use_avx2_paths() ? DepthIsa::Avx2
                                                  : DepthIsa::Scalar;
   return isa;
+}
+
+// Block j's skip and whole-coverage tests (edge values e at its first pixel).
+bool row_block(const DepthRow8& r, const int64_t* e, bool& inside) {
+  if (e[0] + r.hi_off[0] < 0 || e[1] + r.hi_off[1] < 0 || e[2] + r.hi_off[2] < 0) return false;
+  inside = e[0] + r.lo_off[0] >= 0 && e[1] + r.lo_off[1] >= 0 && e[2] + r.lo_off[2] >= 0;
+  return true;
 }
 
 }  // namespace
@@ -65,9 +71,6 @@ SL_AVX2 inline __m256 plane_x_avx2(float z_dx, int ox) {
 struct PlaneRows {
   float z0, z_dy;
   int oy, rows;
-  // The AVX2 walk's rows' y terms, z0 + z_dy · float(oy + r) for r < rows, made once per row of
-  // blocks and shared by its blocks (the AVX2 block functions read them; AVX-512 does not).
-  const float* zy = nullptr;
 };
 
 // The rows of one block, AVX2: lo/hi hold each edge's lanes 0-3 and 4-7 at the first row, and
@@ -91,8 +94,9 @@ SL_AVX2 inline void block_rows_avx2(__m256i* lo, __m256i* hi, const __m256i* dy,
     }
     const __m256i covered = _mm256_cmpeq_epi32(
         _mm256_and_si256(_mm256_set1_epi32(~out_bits), lane_bit), lane_bit);
+    const float zy = p.z0 + p.z_dy * float(p.oy + r);
     const __m256 iw =
-        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(p.zy[r]), zx), z_lo), z_hi);
+        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(zy), zx), z_lo), z_hi);
     float* row = z + size_t(r) * stride;
     const __m256 old = _mm256_loadu_ps(row);
     const __m256 nearer =
@@ -105,143 +109,34 @@ SL_AVX2 inline void block_rows_avx2(__m256i* lo, __m256i* hi, const __m256i* dy,
   }
 }
 
-// The rows of one block, AVX2, with 8 int32 lanes per edge: ev holds each edge's lanes at the
-// first row, every row adds dy. The caller uses it only where every value the block's rows
-// produce fits in int32 (then the wrap-around sums are the exact values), and sets an edge
-// that covers the whole block to 0 with dy 0; `inside` skips the edges altogether. The depth
-// and stores are block_rows_avx2's.
-SL_AVX2 inline void block_rows_avx2_i32(__m256i* ev, const __m256i* dy, bool inside, __m256 zx,
-                                        const PlaneRows& p, __m256 z_lo, __m256 z_hi,
-                                        __m256 id, float* z, uint32_t* ids, size_t stride) {
-  const __m256i minus_one = _mm256_set1_epi32(-1);
-  for (int r = 0; r < p.rows; ++r) {
-    __m256 covered = _mm256_castsi256_ps(minus_one);
-    if (!inside) {
-      const __m256i any = _mm256_or_si256(_mm256_or_si256(ev[0], ev[1]), ev[2]);
-      covered = _mm256_castsi256_ps(_mm256_cmpgt_epi32(any, minus_one));
-      for (int k = 0; k < 3; ++k) ev[k] = _mm256_add_epi32(ev[k], dy[k]);
-    }
-    const __m256 iw =
-        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_set1_ps(p.zy[r]), zx), z_lo), z_hi);
-    float* row = z + size_t(r) * stride;
-    const __m256 old = _mm256_loadu_ps(row);
-    const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(iw, old, _CMP_GT_OQ), covered);
-    _mm256_storeu_ps(row, _mm256_blendv_ps(old, iw, nearer));
-    if (ids) {
-      float* idr = reinterpret_cast<float*>(ids + size_t(r) * stride);
-      _mm256_storeu_ps(idr, _mm256_blendv_ps(_mm256_loadu_ps(idr), id, nearer));
-    }
-  }
-}
-
-// The low 32 bits of v as int32: sums and products of these wrap to the low 32 bits of the
-// int64 ones, which are the exact values wherever those fit in int32.
-inline int32_t low32(int64_t v) { return int32_t(uint32_t(uint64_t(v))); }
-
-// A block cut by the viewport's right edge (lanes from x1 on are not pixels), pixel by pixel:
-// rasterize_depth_in_rect's loop for that block. e: the edges at (bx, py0).
-inline void cut_block_scalar(const TriangleSetup& s, const int64_t* e, const int64_t* step_x,
-                             const int64_t* step_y, int bx, int py0, int py1, int x1, float* z,
-                             uint32_t* ids, size_t width) {
-  for (int y = py0; y <= py1; ++y)
-    for (int x = bx; x < x1; ++x) {
-      const int64_t dx = int64_t(x - bx), dy = int64_t(y - py0);
-      const int64_t e0 = e[0] + step_x[0] * dx + step_y[0] * dy;
-      const int64_t e1 = e[1] + step_x[1] * dx + step_y[1] * dy;
-      const int64_t e2 = e[2] + step_x[2] * dx + step_y[2] * dy;
-      if ((e0 | e1 | e2) < 0) continue;
-      const float zy = s.z0 + s.z_dy * float(y - s.min_y);
-      const float iw = std::min(std::max(zy + s.z_dx * float(x - s.min_x), s.z_lo), s.z_hi);
-      const size_t at = size_t(y) * width + size_t(x);
-      if (iw > z[at]) {
-        z[at] = iw;
-        if (ids) ids[at] = s.triangle;
-      }
-    }
-}
-
-// A triangle's whole walk in a tile, AVX2 (depth_triangle_avx512_impl's walk): a partly covered
-// block takes 8 int32 lanes per edge when every value its rows produce fits in int32 (each edge
-// that crosses it lies within [e + lo_off, e + hi_off]; the others are set to 0), else the
-// int64 halves of block_rows_avx2; a wholly covered block no edge at all; a block cut by the
-// viewport's right edge goes pixel by pixel.
-SL_AVX2 static void depth_triangle_avx2_impl(const TriangleSetup& s, int x0, int y0, int x1,
-                                             int y1, float* z, uint32_t* ids, size_t width) {
-  const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
-  const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
-  if (min_x > max_x || min_y > max_y) return;
-  constexpr int kBlock = 8;
-  const int64_t one = int64_t(1) << kSubpixelBits, half = one / 2;
-  const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  int64_t step_x[3], step_y[3], bstep[3], x_span[3];
-  __m256i lane32[3], dy32[3];
+// The AVX2 row of blocks: block_rows_avx2 per block, the lane offsets step_x · i made once per
+// row (exact int64 sums: the values of lane_x).
+SL_AVX2 static void depth_row8_avx2_impl(const DepthRow8& rw, float* z, size_t stride) {
+  __m256i lane_lo[3], lane_hi[3], dy[3];
+  int64_t e[3];
   for (int k = 0; k < 3; ++k) {
-    step_x[k] = s.a[k] * one;
-    step_y[k] = s.b[k] * one;
-    bstep[k] = step_x[k] * kBlock;
-    x_span[k] = step_x[k] * (kBlock - 1);
-    // step_x · i modulo 2^32 (a product's low 32 bits depend only on its factors' low bits).
-    lane32[k] = _mm256_mullo_epi32(_mm256_set1_epi32(low32(step_x[k])), iota);
-    dy32[k] = _mm256_set1_epi32(low32(step_y[k]));
+    const int64_t s1 = rw.step_x[k], s2 = s1 + s1, s3 = s2 + s1, s4 = s2 + s2;
+    lane_lo[k] = _mm256_setr_epi64x(0, s1, s2, s3);
+    lane_hi[k] = _mm256_add_epi64(lane_lo[k], _mm256_set1_epi64x(s4));
+    dy[k] = _mm256_set1_epi64x(rw.step_y[k]);
+    e[k] = rw.edge[k];
   }
-  const __m256 z_lo = _mm256_set1_ps(s.z_lo), z_hi = _mm256_set1_ps(s.z_hi);
-  const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(s.triangle)));
-  const int bx_start = min_x - (min_x - x0) % kBlock;
-  const int by_start = min_y - (min_y - y0) % kBlock;
-  for (int by = by_start; by <= max_y; by += kBlock) {
-    const int py0 = std::max(by, min_y), py1 = std::min(by + kBlock - 1, max_y);
-    const int oy = py0 - s.min_y, rows = py1 - py0 + 1;
-    float zy[kBlock];
-    for (int r = 0; r < rows; ++r) zy[r] = s.z0 + s.z_dy * float(oy + r);
-    const PlaneRows p{s.z0, s.z_dy, oy, rows, zy};
-    int64_t e[3], lo_off[3], hi_off[3];
-    for (int k = 0; k < 3; ++k) {
-      e[k] = s.a[k] * (int64_t(bx_start) * one + half) + s.b[k] * (int64_t(py0) * one + half) +
-             s.c[k];
-      const int64_t d = step_y[k] * int64_t(py1 - py0);
-      lo_off[k] = std::min<int64_t>(0, x_span[k]) + std::min<int64_t>(0, d);
-      hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, d);
-    }
-    float* const zrow = z + size_t(py0) * width;
-    uint32_t* const idrow = ids ? ids + size_t(py0) * width : nullptr;
-    for (int bx = bx_start; bx <= max_x;
-         bx += kBlock, e[0] += bstep[0], e[1] += bstep[1], e[2] += bstep[2]) {
-      if (e[0] + hi_off[0] < 0 || e[1] + hi_off[1] < 0 || e[2] + hi_off[2] < 0) continue;
-      if (bx + kBlock > x1) {
-        cut_block_scalar(s, e, step_x, step_y, bx, py0, py1, x1, z, ids, width);
-        continue;
-      }
-      const __m256 zx = plane_x_avx2(s.z_dx, bx - s.min_x);
-      float* const zb = zrow + bx;
-      uint32_t* const idb = idrow ? idrow + bx : nullptr;
-      bool whole = true, fits = true;
-      __m256i ev[3], dy[3];
+  const PlaneRows p{rw.z0, rw.z_dy, rw.oy, rw.rows};
+  const __m256 z_lo = _mm256_set1_ps(rw.z_lo), z_hi = _mm256_set1_ps(rw.z_hi);
+  const __m256 id = _mm256_castsi256_ps(_mm256_set1_epi32(int(rw.id)));
+  for (int j = 0; j < rw.blocks; ++j) {
+    bool inside = false;
+    if (row_block(rw, e, inside)) {
+      __m256i lo[3], hi[3];
       for (int k = 0; k < 3; ++k) {
-        if (e[k] + lo_off[k] >= 0) {  // edge k covers the whole block
-          ev[k] = dy[k] = _mm256_setzero_si256();
-          continue;
-        }
-        whole = false;
-        fits = fits && e[k] + lo_off[k] >= INT32_MIN && e[k] + hi_off[k] <= INT32_MAX;
-        ev[k] = _mm256_add_epi32(_mm256_set1_epi32(low32(e[k])), lane32[k]);
-        dy[k] = dy32[k];
-      }
-      if (whole || fits) {
-        block_rows_avx2_i32(ev, dy, whole, zx, p, z_lo, z_hi, id, zb, idb, width);
-        continue;
-      }
-      // The int64 lanes (lane k: e + step_x · k by exact sums), made only here: few blocks
-      // need them.
-      __m256i lo[3], hi[3], dy64[3];
-      for (int k = 0; k < 3; ++k) {
-        const int64_t s1 = step_x[k], s2 = s1 + s1, s3 = s2 + s1, s4 = s2 + s2;
         const __m256i ek = _mm256_set1_epi64x(e[k]);
-        lo[k] = _mm256_add_epi64(ek, _mm256_setr_epi64x(0, s1, s2, s3));
-        hi[k] = _mm256_add_epi64(lo[k], _mm256_set1_epi64x(s4));
-        dy64[k] = _mm256_set1_epi64x(step_y[k]);
+        lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
+        hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
       }
-      block_rows_avx2(lo, hi, dy64, false, zx, p, z_lo, z_hi, id, zb, idb, width);
+      block_rows_avx2(lo, hi, dy, inside, plane_x_avx2(rw.z_dx, rw.ox + 8 * j), p, z_lo, z_hi, id,
+                      z + 8 * size_t(j), rw.ids ? rw.ids + 8 * size_t(j) : nullptr, stride);
     }
+    for (int k = 0; k < 3; ++k) e[k] += rw.block_step[k];
   }
 }
 
@@ -337,20 +232,21 @@ DepthTriangleFn depth_triangle_avx512() {
   return nullptr;
 }
 
-DepthTriangleFn depth_triangle_avx2() {
+DepthTriangleFn depth_triangle_selected() {
+  return depth_isa() == DepthIsa::Avx512 ? depth_triangle_avx512() : nullptr;
+}
+
+DepthRow8Fn depth_row8_avx2() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx2()) return depth_triangle_avx2_impl;
+  if (cpu_has_avx2()) return depth_row8_avx2_impl;
 #endif
   return nullptr;
 }
 
-DepthTriangleFn depth_triangle_selected() {
-  switch (depth_isa()) {
-    case DepthIsa::Avx512: return depth_triangle_avx512();
-    case DepthIsa::Avx2: return depth_triangle_avx2();
-    case DepthIsa::Scalar: break;
-  }
-  return nullptr;
+DepthRow8Fn depth_row8_selected() {
+  // The AVX-512 path walks whole triangles (depth_triangle_avx512); rows of blocks in AVX2.
+  const DepthRow8Fn avx2 = depth_isa() == DepthIsa::Scalar ? nullptr : depth_row8_avx2();
+  return avx2 ? avx2 : depth_row8_scalar;
 }
 
 const char* depth_kernel_name() {

@@ -10,9 +10,9 @@
 
 namespace shadowlab {
 
-// Name of the depth kernels in use, chosen once per process: "avx512" or "avx2" (whole
-// triangles, depth_triangle_selected) or "scalar" (the oracle, rows of blocks);
-// SHADOWLAB_ISA=avx2 keeps AVX2, SHADOWLAB_SCALAR=1 the scalar oracle.
+// Name of the depth kernels in use, chosen once per process: "avx512" (whole triangles,
+// depth_triangle_selected), "avx2" (rows of blocks) or "scalar" (the oracle); SHADOWLAB_ISA=avx2
+// keeps AVX2, SHADOWLAB_SCALAR=1 the scalar oracle.
 const char* depth_kernel_name();
 
 // A row of `blocks` blocks side by side, each `rows` rows × 8 pixels, in one call (the walk over
@@ -34,29 +34,29 @@ struct DepthRow8 {
 };
 using DepthRow8Fn = void (*)(const DepthRow8& r, float* z, size_t stride);
 
-// Scalar reference: every pixel of every block tested on its own (no block-level test). The
-// rasterizer's depth-only path when the scalar oracle is in use; the AVX2 and AVX-512 paths walk
-// whole triangles instead (depth_triangle_selected).
+// Scalar reference: every pixel of every block tested on its own (no block-level test).
 void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride);
+// The AVX2 row, or nullptr when the CPU lacks AVX2.
+DepthRow8Fn depth_row8_avx2();
+// The scalar oracle when it is the kernel in use, else the AVX2 row (the AVX-512 path walks
+// whole triangles instead: depth_triangle_selected).
+DepthRow8Fn depth_row8_selected();
 
 inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
-  depth_row8_scalar(r, z, stride);
+  static const DepthRow8Fn fn = depth_row8_selected();
+  fn(r, z, stride);
 }
 
 // A whole triangle inside the rectangle [x0, x1) × [y0, y1) of a width-wide target (z, and
-// ids when not null): rasterize_depth_in_rect's walk and depth_row8's blocks in one SIMD
-// function, the per-triangle fields in registers. The block cut by the viewport's right edge:
-// masked loads and stores in AVX-512, pixel by pixel in AVX2. Per pixel the same coverage and
-// float operations as the scalar oracle, so the same bits.
+// ids when not null): rasterize_depth_in_rect's walk and depth_row8's blocks in one AVX-512
+// function, the per-triangle fields in registers; the viewport's right edge cuts the last
+// block's lanes (masked loads and stores) where the walk takes that block pixel by pixel.
+// Per pixel the same coverage and float operations, so the same bits.
 struct TriangleSetup;
 using DepthTriangleFn = void (*)(const TriangleSetup& s, int x0, int y0, int x1, int y1,
                                  float* z, uint32_t* ids, size_t width);
 DepthTriangleFn depth_triangle_avx512();
-// The AVX2 form (nullptr without AVX2): 8 int32 lanes per edge in the blocks whose values fit,
-// the int64 halves (block_rows_avx2) in the others, the cut block pixel by pixel.
-DepthTriangleFn depth_triangle_avx2();
-// The form of the kernels in use (depth_kernel_name): AVX-512 or AVX2; nullptr for the scalar
-// oracle, which walks rows of blocks (depth_row8_scalar).
+// The AVX-512 form when the AVX-512 kernels are in use (depth_kernel_name), else nullptr.
 DepthTriangleFn depth_triangle_selected();
 
 }  // namespace shadowlab

@@ -1,7 +1,6 @@
-// The scalar row kernel (the oracle's depth-only path) against a brute-force loop over the
-// pixels: identical bits on random rows of blocks. The AVX2 and AVX-512 paths walk whole
-// triangles: tests/raster/depth_triangle_test.cpp, and the frame-level tests
-// (tests/raster/reference_rasterizer_test.cpp), compare them with the general path.
+// The row kernels (scalar oracle, AVX2) against a brute-force loop over the pixels: identical
+// bits on random rows of blocks. The AVX-512 path walks whole triangles; the frame-level tests
+// (tests/raster/reference_rasterizer_test.cpp) compare it with the general path.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -90,6 +89,11 @@ void expect_row_matches_brute_force(DepthRow8Fn fn) {
 
 TEST(DepthKernels, ScalarRowMatchesBruteForce) { expect_row_matches_brute_force(depth_row8_scalar); }
 
+TEST(DepthKernels, Avx2RowMatchesBruteForce) {
+  const DepthRow8Fn fast = depth_row8_avx2();
+  if (!fast) GTEST_SKIP() << "no AVX2 on this CPU";
+  expect_row_matches_brute_force(fast);
+}
 
 }  // namespace
 }  // namespace shadowlab

@@ -1,9 +1,11 @@
-// The whole-triangle depth walks (AVX2 and AVX-512) against the general per-fragment path
+// The whole-triangle depth walk (AVX-512) against the general per-fragment path
 // (rasterize_triangle_in_rect, which tests every pixel of a block on its own): random
 // triangles set up by setup_triangle, drawn over random depths tile by tile, must leave the
 // same bytes of depth and ids. Viewports whose width is not a multiple of 8 cut the last block
-// of a row; triangles reaching into the guard band have edge values past int32 in a block,
-// where the AVX2 walk takes its int64 lanes.
+// of a row (the AVX-512 walk masks its lanes); triangles reach into the guard band, where edge
+// values pass int32 within a block. (An AVX2 form of this walk was measured and not kept:
+// README "Rasterizer benchmark", tenth session; it passed this test, which failed with its
+// int32 range check or its cut block broken.)
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -90,12 +92,6 @@ void expect_walk_matches_general_path(DepthTriangleFn walk) {
   EXPECT_GT(drawn, 5000);
   EXPECT_GT(wide, 500);
   EXPECT_GT(cut_tiles, 100);
-}
-
-TEST(DepthTriangle, Avx2WalkMatchesTheGeneralPath) {
-  const DepthTriangleFn walk = depth_triangle_avx2();
-  if (!walk) GTEST_SKIP() << "no AVX2 on this CPU";
-  expect_walk_matches_general_path(walk);
 }
 
 TEST(DepthTriangle, Avx512WalkMatchesTheGeneralPath) {
