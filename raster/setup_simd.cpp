@@ -28,6 +28,52 @@ int setup_batch8_scalar(const SetupBatch8& b, int width, int height, CullMode cu
 #ifdef SHADOWLAB_HAVE_X86
 namespace {
 
+// A batch's lanes between the vector code and the records: the integers as int64 (AVX-512)
+// or as the doubles that hold them exactly (AVX2), the plane as float or double.
+template <class Int, class Real>
+struct SetupLanes {
+  alignas(64) Int a[3][8], b[3][8], c[3][8], area[8], x0[8], x1[8], y0[8], y1[8];
+  alignas(64) Real iw[3][8], z0[8], zx[8], zy[8], lo[8], hi[8];
+};
+
+// The records of the lanes in `live` (bit k: lane k), in lane order: vertices 1 and 2 swapped
+// where `neg`, edge e's bias 0 where top_left[e] has the lane, else −1. The conversions are
+// exact for the integers; for the plane, float(double) is the scalar setup's own rounding.
+template <class Int, class Real>
+int write_setups(const SetupLanes<Int, Real>& L, int live, int neg, const int* top_left,
+                 const uint32_t* triangle, TriangleSetup* out) {
+  int n = 0;
+  for (int k = 0; k < 8; ++k) {
+    if (!((live >> k) & 1)) continue;
+    TriangleSetup& s = out[n++];
+    const bool swapped = (neg >> k) & 1;
+    const int order[3] = {0, swapped ? 2 : 1, swapped ? 1 : 2};
+    for (int e = 0; e < 3; ++e) {
+      s.a[e] = int64_t(L.a[e][k]);
+      s.b[e] = int64_t(L.b[e][k]);
+      s.c[e] = int64_t(L.c[e][k]);
+      s.bias[e] = int8_t(((top_left[e] >> k) & 1) ? 0 : -1);
+      s.inv_w[e] = float(L.iw[e][k]);
+      // The original vertex's unit barycentrics times its 1/w, as vec3 * float.
+      const vec3 unit(order[e] == 0 ? 1.0f : 0.0f, order[e] == 1 ? 1.0f : 0.0f,
+                      order[e] == 2 ? 1.0f : 0.0f);
+      s.bary_over_w[e] = unit * s.inv_w[e];
+    }
+    s.area2 = int64_t(L.area[k]);
+    s.min_x = int(L.x0[k]);
+    s.max_x = int(L.x1[k]);
+    s.min_y = int(L.y0[k]);
+    s.max_y = int(L.y1[k]);
+    s.z0 = float(L.z0[k]);
+    s.z_dx = float(L.zx[k]);
+    s.z_dy = float(L.zy[k]);
+    s.z_lo = float(L.lo[k]);
+    s.z_hi = float(L.hi[k]);
+    s.triangle = triangle[k];
+  }
+  return n;
+}
+
 #define SL_SETUP __attribute__((target("avx512f,avx512dq,avx512vl")))
 
 // The zero-masked forms with every lane on: GCC 12's unmasked ones pass an undefined source
@@ -149,54 +195,25 @@ SL_SETUP int setup_batch8_avx512(const SetupBatch8& b, int width, int height, Cu
     z_hi = _mm256_mask_blend_ps(_mm256_cmp_ps_mask(z_hi, IW[i], _CMP_LT_OQ), z_hi, IW[i]);
   }
   // Lanes out to memory, then the surviving triangles' records in lane order.
-  alignas(64) int64_t A[3][8], B[3][8], C[3][8], area[8], bx0[8], bx1[8], by0[8], by1[8];
-  alignas(32) float iw[3][8], fz0[8], fzx[8], fzy[8], flo[8], fhi[8];
+  SetupLanes<int64_t, float> L;
   for (int k = 0; k < 3; ++k) {
-    _mm512_store_si512(A[k], ea[k]);
-    _mm512_store_si512(B[k], eb[k]);
-    _mm512_store_si512(C[k], ec[k]);
-    _mm256_store_ps(iw[k], IW[k]);
+    _mm512_store_si512(L.a[k], ea[k]);
+    _mm512_store_si512(L.b[k], eb[k]);
+    _mm512_store_si512(L.c[k], ec[k]);
+    _mm256_store_ps(L.iw[k], IW[k]);
   }
-  _mm512_store_si512(area, area2);
-  _mm512_store_si512(bx0, min_x);
-  _mm512_store_si512(bx1, max_x);
-  _mm512_store_si512(by0, min_y);
-  _mm512_store_si512(by1, max_y);
-  _mm256_store_ps(fz0, z0);
-  _mm256_store_ps(fzx, narrow(dzdx));
-  _mm256_store_ps(fzy, narrow(dzdy));
-  _mm256_store_ps(flo, z_lo);
-  _mm256_store_ps(fhi, z_hi);
-  int n = 0;
-  for (int k = 0; k < 8; ++k) {
-    if (!((live >> k) & 1)) continue;
-    TriangleSetup& s = out[n++];
-    const bool swapped = (neg >> k) & 1;
-    const int order[3] = {0, swapped ? 2 : 1, swapped ? 1 : 2};
-    for (int e = 0; e < 3; ++e) {
-      s.a[e] = A[e][k];
-      s.b[e] = B[e][k];
-      s.c[e] = C[e][k];
-      s.bias[e] = int8_t(((top_left[e] >> k) & 1) ? 0 : -1);
-      s.inv_w[e] = iw[e][k];
-      // The original vertex's unit barycentrics times its 1/w, as vec3 * float.
-      const vec3 unit(order[e] == 0 ? 1.0f : 0.0f, order[e] == 1 ? 1.0f : 0.0f,
-                      order[e] == 2 ? 1.0f : 0.0f);
-      s.bary_over_w[e] = unit * s.inv_w[e];
-    }
-    s.area2 = area[k];
-    s.min_x = int(bx0[k]);
-    s.max_x = int(bx1[k]);
-    s.min_y = int(by0[k]);
-    s.max_y = int(by1[k]);
-    s.z0 = fz0[k];
-    s.z_dx = fzx[k];
-    s.z_dy = fzy[k];
-    s.z_lo = flo[k];
-    s.z_hi = fhi[k];
-    s.triangle = b.triangle[k];
-  }
-  return n;
+  _mm512_store_si512(L.area, area2);
+  _mm512_store_si512(L.x0, min_x);
+  _mm512_store_si512(L.x1, max_x);
+  _mm512_store_si512(L.y0, min_y);
+  _mm512_store_si512(L.y1, max_y);
+  _mm256_store_ps(L.z0, z0);
+  _mm256_store_ps(L.zx, narrow(dzdx));
+  _mm256_store_ps(L.zy, narrow(dzdy));
+  _mm256_store_ps(L.lo, z_lo);
+  _mm256_store_ps(L.hi, z_hi);
+  const int tl[3] = {top_left[0], top_left[1], top_left[2]};
+  return write_setups(L, live, neg, tl, b.triangle, out);
 }
 
 #undef SL_SETUP
@@ -211,9 +228,7 @@ SL_SETUP int setup_batch8_avx512(const SetupBatch8& b, int width, int height, Cu
 #define SL_SETUP2 __attribute__((target("avx2")))
 
 // Lane arrays of one batch between the vector halves and the records.
-struct SetupLanes8 {
-  alignas(32) double a[3][8], b[3][8], c[3][8], area[8], x0[8], x1[8], y0[8], y1[8];
-  alignas(32) double iw[3][8], z0[8], zx[8], zy[8], lo[8], hi[8];
+struct SetupLanes8 : SetupLanes<double, double> {
   int degenerate = 0, culled = 0, live = 0, neg = 0, top_left[3] = {};
 };
 
@@ -364,36 +379,7 @@ SL_SETUP2 int setup_batch8_avx2(const SetupBatch8& b, int width, int height, Cul
     return setup_batch8_scalar(b, width, height, cull, out, stats);
   stats.dropped_degenerate += size_t(__builtin_popcount(unsigned(L.degenerate)));
   stats.culled_facing += size_t(__builtin_popcount(unsigned(L.culled)));
-  int n = 0;
-  for (int k = 0; k < 8; ++k) {
-    if (!((L.live >> k) & 1)) continue;
-    TriangleSetup& s = out[n++];
-    const bool swapped = (L.neg >> k) & 1;
-    const int order[3] = {0, swapped ? 2 : 1, swapped ? 1 : 2};
-    for (int e = 0; e < 3; ++e) {
-      s.a[e] = int64_t(L.a[e][k]);
-      s.b[e] = int64_t(L.b[e][k]);
-      s.c[e] = int64_t(L.c[e][k]);
-      s.bias[e] = int8_t(((L.top_left[e] >> k) & 1) ? 0 : -1);
-      s.inv_w[e] = float(L.iw[e][k]);
-      // The original vertex's unit barycentrics times its 1/w, as vec3 * float.
-      const vec3 unit(order[e] == 0 ? 1.0f : 0.0f, order[e] == 1 ? 1.0f : 0.0f,
-                      order[e] == 2 ? 1.0f : 0.0f);
-      s.bary_over_w[e] = unit * s.inv_w[e];
-    }
-    s.area2 = int64_t(L.area[k]);
-    s.min_x = int(L.x0[k]);
-    s.max_x = int(L.x1[k]);
-    s.min_y = int(L.y0[k]);
-    s.max_y = int(L.y1[k]);
-    s.z0 = float(L.z0[k]);
-    s.z_dx = float(L.zx[k]);
-    s.z_dy = float(L.zy[k]);
-    s.z_lo = float(L.lo[k]);
-    s.z_hi = float(L.hi[k]);
-    s.triangle = b.triangle[k];
-  }
-  return n;
+  return write_setups(L, L.live, L.neg, L.top_left, b.triangle, out);
 }
 
 #undef SL_SETUP2

@@ -1,5 +1,7 @@
-// The whole-triangle depth walk (AVX-512) against the general per-fragment path
-// (rasterize_triangle_in_rect, which tests every pixel of a block on its own): random
+// The depth-only paths against the general per-fragment path (rasterize_triangle_in_rect,
+// which tests every pixel of a block on its own): the one in use on this machine
+// (rasterize_depth_in_rect: the AVX-512 whole-triangle walk, the AVX2 rows of blocks or the
+// scalar oracle's), and the AVX-512 walk on its own where the CPU has it. Random
 // triangles set up by setup_triangle, drawn over random depths tile by tile, must leave the
 // same bytes of depth and ids. Viewports whose width is not a multiple of 8 cut the last block
 // of a row (the AVX-512 walk masks its lanes); triangles reach into the guard band, where edge
@@ -8,6 +10,9 @@
 // int32 range check or its cut block broken.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
@@ -36,7 +41,9 @@ bool wide_edges(const TriangleSetup& s) {
   return false;
 }
 
-void expect_walk_matches_general_path(DepthTriangleFn walk) {
+// `draw(s, x0, y0, x1, y1, target)`: the depth-only path under test, one tile of triangle s.
+template <class Draw>
+void expect_walk_matches_general_path(const Draw& draw) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f), wdist(0.2f, 5.0f), zinit(0.0f, 1.5f);
   int drawn = 0, wide = 0, cut_tiles = 0;
@@ -78,8 +85,7 @@ void expect_walk_matches_general_path(DepthTriangleFn walk) {
         for (int x0 = 0; x0 < width; x0 += kTileSize) {
           const int x1 = std::min(width, x0 + kTileSize), y1 = std::min(height, y0 + kTileSize);
           cut_tiles += t == 0 && (x1 - x0) % 8 != 0;
-          walk(s, x0, y0, x1, y1, got.inv_w.data(), with_ids ? got.ids.data() : nullptr,
-               size_t(width));
+          draw(s, x0, y0, x1, y1, got);
           rasterize_triangle_in_rect(s, x0, y0, x1, y1, want, keep);
         }
     }
@@ -94,10 +100,21 @@ void expect_walk_matches_general_path(DepthTriangleFn walk) {
   EXPECT_GT(cut_tiles, 100);
 }
 
+TEST(DepthTriangle, DepthOnlyPathInUseMatchesTheGeneralPath) {
+  expect_walk_matches_general_path(
+      [](const TriangleSetup& s, int x0, int y0, int x1, int y1, DepthTarget& t) {
+        rasterize_depth_in_rect(s, x0, y0, x1, y1, t);
+      });
+}
+
 TEST(DepthTriangle, Avx512WalkMatchesTheGeneralPath) {
   const DepthTriangleFn walk = depth_triangle_avx512();
   if (!walk) GTEST_SKIP() << "no AVX-512 on this CPU";
-  expect_walk_matches_general_path(walk);
+  expect_walk_matches_general_path(
+      [walk](const TriangleSetup& s, int x0, int y0, int x1, int y1, DepthTarget& t) {
+        walk(s, x0, y0, x1, y1, t.inv_w.data(), t.with_ids ? t.ids.data() : nullptr,
+             size_t(t.width));
+      });
 }
 
 }  // namespace
