@@ -192,11 +192,12 @@ __attribute__((target("avx512f,avx512dq"))) void msm_batch_avx512(
 #endif
 
 // 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
-// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist. With AVX-512
-// the lookup loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a
-// serial chain of 7 divisions and a square root per batch, and 4 independent chains side by
-// side took the room100k lookup from 7.0-7.4 to 5.1-5.9 ms where 2 took it to 5.4-6.3 and 8
-// gained nothing (AMD EPYC, alternating rounds of technique_bench).
+// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist. The lookup
+// loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a serial chain
+// of divisions and a square root per batch (7 divisions then, 2 now), and with AVX-512 4
+// independent chains side by side took the room100k lookup from 7.0-7.4 to 5.1-5.9 ms where 2
+// took it to 5.4-6.3 and 8 gained nothing (AMD EPYC, alternating rounds of technique_bench).
+// The AVX2 form takes them as pairs of batches (4 halves of 4 lanes side by side).
 struct MsmBatch {
   static constexpr bool kEnabled = true;
   static constexpr int kGroups = 4;
