@@ -12,6 +12,7 @@
 #include "core/cpu_features.h"
 #include "core/error.h"
 #include "core/projector.h"
+#include "techniques/chebyshev.h"
 
 namespace shadowlab {
 
@@ -572,13 +573,15 @@ SL_AVX2 inline bool pair_rows(const MapLookupConsts& c, const Receivers8& r, con
   const __m256i start = clamp_i(ix, zero, wm2);
   out.left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
   out.right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
-  const int first_active = __builtin_ctz(unsigned(active_bits));
+  // Inactive lanes take the first active lane's index: a permute and a blend per row, where a
+  // branch per lane was a third of this function's instructions.
+  const __m256i first_active = _mm256_set1_epi32(__builtin_ctz(unsigned(active_bits)));
   const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
   for (int y = 0; y < 2; ++y) {
+    const __m256i at = _mm256_add_epi32(off, _mm256_mullo_epi32(row[y], nv));
+    const __m256i first = _mm256_permutevar8x32_epi32(at, first_active);
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.at[y]),
-                       _mm256_add_epi32(off, _mm256_mullo_epi32(row[y], nv)));
-    for (int k = 0; k < 8; ++k)
-      if (!((active_bits >> k) & 1)) out.at[y][k] = out.at[y][first_active];
+                       _mm256_blendv_epi8(first, at, _mm256_castps_si256(out.active)));
   }
   return true;
 }
@@ -643,6 +646,78 @@ SL_AVX2 void bilinear8_interleaved4_avx2(const MapLookupConsts& c, const Receive
   }
 }
 
+// The bilinear mix of the four values per texel for 8 receivers, in double: lane k's
+// m[v][k] = Σ_t w_t · value_t (bilinear_weights' w, summed from 0 over taps 0..3, the scalar
+// loops' order). Lane by lane, its four values side by side in one vector: each tap is one
+// 16-byte load widened to double, times the lane's weight broadcast, so no transpose of the tap
+// rows and no round trip of the 16 tap vectors through memory (bilinear8_interleaved4_avx2 and
+// the batch's reload); then a 4 × 4 transpose per half. Inactive lanes get zeros.
+SL_AVX2 void bilinear8_mix4_avx2(const MapLookupConsts& c, const Receivers8& r,
+                                 const PlaneGather& plane, double (*m)[8]) {
+  if (_mm256_testz_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active)),
+                         _mm256_set1_epi32(-1))) {
+    // No active lane (a batch of uncovered or unlit pixels): zeros, without pair_rows'
+    // lane-by-lane fill.
+    for (int v = 0; v < 4; ++v)
+      for (int h = 0; h < 2; ++h) _mm256_store_pd(m[v] + 4 * h, _mm256_setzero_pd());
+    return;
+  }
+  PairRows p;
+  alignas(32) float values[4][4][8], fx[8], fy[8];
+  alignas(32) double w[4][8];  // w[t][lane]
+  const bool pairs = pair_rows(c, r, plane, 4, values, fx, fy, p);
+  for (int h = 0; h < 2; ++h) {
+    __m256d wh[4];
+    bilinear_weights4(_mm256_cvtps_pd(_mm_load_ps(fx + 4 * h)),
+                      _mm256_cvtps_pd(_mm_load_ps(fy + 4 * h)), wh);
+    for (int t = 0; t < 4; ++t) _mm256_store_pd(w[t] + 4 * h, wh[t]);
+  }
+  __m256d lane[8];
+  if (pairs) {
+    // Per tap and lane, the float offset of its 4 values: the pair's first texel at at[y], the
+    // second 4 floats on, with store_pair's edge rule (a lane clamped at the right edge takes
+    // the second texel for both taps, at the left edge the first).
+    alignas(32) int32_t off[4][8];
+    const __m256i four = _mm256_set1_epi32(4);
+    const __m256i right4 = _mm256_and_si256(_mm256_castps_si256(p.right), four);
+    const __m256i not_left4 = _mm256_andnot_si256(_mm256_castps_si256(p.left), four);
+    for (int y = 0; y < 2; ++y) {
+      const __m256i at = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.at[y]));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(off[2 * y]), _mm256_add_epi32(at, right4));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(off[2 * y + 1]), _mm256_add_epi32(at, not_left4));
+    }
+    for (int k = 0; k < 8; ++k) {
+      __m256d acc = _mm256_setzero_pd();
+      for (int t = 0; t < 4; ++t)
+        acc = _mm256_add_pd(acc, _mm256_mul_pd(_mm256_broadcast_sd(&w[t][k]),
+                                               _mm256_cvtps_pd(_mm_loadu_ps(plane.base + off[t][k]))));
+      lane[k] = acc;
+    }
+  } else {  // pair_rows filled values lane by lane
+    for (int k = 0; k < 8; ++k) {
+      __m256d acc = _mm256_setzero_pd();
+      for (int t = 0; t < 4; ++t)
+        acc = _mm256_add_pd(acc, _mm256_mul_pd(_mm256_broadcast_sd(&w[t][k]),
+                                               _mm256_cvtps_pd(_mm_setr_ps(values[0][t][k], values[1][t][k],
+                                                                           values[2][t][k], values[3][t][k]))));
+      lane[k] = acc;
+    }
+  }
+  // Lanes 4h .. 4h + 3 (value v in element v) to m[v][4h ..]: a 4 × 4 transpose.
+  const __m256 active = _mm256_load_ps(reinterpret_cast<const float*>(r.active));
+  for (int h = 0; h < 2; ++h) {
+    const __m256d* L = lane + 4 * h;
+    const __m256d t0 = _mm256_unpacklo_pd(L[0], L[1]), t1 = _mm256_unpackhi_pd(L[0], L[1]);
+    const __m256d t2 = _mm256_unpacklo_pd(L[2], L[3]), t3 = _mm256_unpackhi_pd(L[2], L[3]);
+    const __m256d on = _mm256_castps_pd(_mm256_castsi256_ps(_mm256_cvtepi32_epi64(
+        _mm_castps_si128(h ? _mm256_extractf128_ps(active, 1) : _mm256_castps256_ps128(active)))));
+    _mm256_store_pd(m[0] + 4 * h, _mm256_and_pd(on, _mm256_permute2f128_pd(t0, t2, 0x20)));
+    _mm256_store_pd(m[1] + 4 * h, _mm256_and_pd(on, _mm256_permute2f128_pd(t1, t3, 0x20)));
+    _mm256_store_pd(m[2] + 4 * h, _mm256_and_pd(on, _mm256_permute2f128_pd(t0, t2, 0x31)));
+    _mm256_store_pd(m[3] + 4 * h, _mm256_and_pd(on, _mm256_permute2f128_pd(t1, t3, 0x31)));
+  }
+}
+
 SL_AVX2 void prefetch8_avx2(const MapLookupConsts& c, const Receivers8& r,
                             const PlaneGather& plane, int floats_per_texel) {
   const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
@@ -703,6 +778,13 @@ Prefetch8Fn prefetch8_simd() {
 Bilinear8x2Fn bilinear8_interleaved4_simd() {
 #ifdef SHADOWLAB_HAVE_X86
   if (use_avx2_paths()) return bilinear8_interleaved4_avx2;
+#endif
+  return nullptr;
+}
+
+Mix8x4Fn bilinear8_mix4_simd() {
+#ifdef SHADOWLAB_HAVE_X86
+  if (use_avx2_paths()) return bilinear8_mix4_avx2;
 #endif
   return nullptr;
 }

@@ -100,6 +100,14 @@ Bilinear8x2Fn bilinear8_interleaved2_simd();
 // The same for four values per texel (texel i's at offset + 4i + 0..3): values[0..3][tap][lane].
 Bilinear8x2Fn bilinear8_interleaved4_simd();
 
+// The bilinear mix of four values per texel (texel i's at offset + 4i + 0..3) for 8 receivers,
+// in double: m[v][lane] = Σ_t w_t · values[v][t][lane], with bilinear_weights' w (chebyshev.h)
+// summed from 0 over taps 0..3 in order: the scalar lookups' sum, bit for bit. Inactive lanes
+// mix zeros. MSM's AVX2 batch (moment_shadow_map.cpp) uses it instead of the taps.
+using Mix8x4Fn = void (*)(const MapLookupConsts& c, const Receivers8& r, const PlaneGather& plane,
+                          double (*m)[8]);
+Mix8x4Fn bilinear8_mix4_simd();
+
 // Prefetches the two texel rows of each active lane's bilinear footprint in a plane of
 // floats_per_texel values per texel (a hint only: no value changes). The batched lookup issues it
 // for the next 8 pixels before reconstructing the current ones, so their map lines (the maps are

@@ -110,28 +110,20 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
 
 #if defined(__x86_64__)
 #define SL_AVX2 __attribute__((target("avx2")))
-// msm_value for the 8 lanes of each of N batches, each batch in two halves of 4 doubles: its
-// operations in its order, the 2N halves' reconstructions side by side (msm_intensity4n<2N>:
-// N > 1 overlaps the batches' chains of divisions, as msm_batch_avx512 does).
+// msm_value for the 8 lanes of each of N batches, from their bilinearly mixed moments
+// (bilinear8_mix4_avx2: msm_value's sum, bit for bit), each batch in two halves of 4 doubles:
+// msm_value's remaining operations in its order, the 2N halves' reconstructions side by side
+// (msm_intensity4n<2N>: N > 1 overlaps the batches' chains of divisions, as msm_batch_avx512
+// does).
 template <int N>
-SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const float (*const* v)[4][8],
-                            const float* const* fx, const float* const* fy,
+SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const double (*const* mixed)[8],
                             const float* const* depth, float* const* out) {
   const __m256d one = _mm256_set1_pd(1.0);
   __m256d m[2 * N][4], z[2 * N], g[2 * N];
   for (int hh = 0; hh < 2 * N; ++hh) {
     const int h = hh / 2, half = hh % 2;
-    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx[h] + 4 * half));
-    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy[h] + 4 * half));
-    __m256d w[4];
-    bilinear_weights4(vx, vy, w);
     __m256d* mh = m[hh];
-    for (int j = 0; j < 4; ++j) {
-      mh[j] = _mm256_setzero_pd();
-      for (int i = 0; i < 4; ++i)
-        mh[j] = _mm256_add_pd(
-            mh[j], _mm256_mul_pd(w[i], _mm256_cvtps_pd(_mm_load_ps(v[h][j][i] + 4 * half))));
-    }
+    for (int j = 0; j < 4; ++j) mh[j] = _mm256_load_pd(mixed[h][j] + 4 * half);
     if (k.quantize16) {
       // msm_decode16's operations, lane by lane.
       const __m256d q[4] = {_mm256_sub_pd(mh[0], _mm256_set1_pd(kMsmOffset)), mh[1], mh[2],
@@ -191,8 +183,10 @@ __attribute__((target("avx512f,avx512dq"))) void msm_batch_avx512(
 }
 #endif
 
-// 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel, then
-// msm_value's arithmetic in AVX2 double. Used only where the AVX2 kernels exist. The lookup
+// 8 lanes at once: msm_value's arithmetic in double. With AVX-512, the interleaved moments'
+// bilinear taps loaded by the AVX2 kernel, then the mix and the reconstruction in 8 lanes;
+// with AVX2, the mixed moments from bilinear8_mix4_avx2 (lane by lane, no tap transpose), then
+// the reconstruction in halves of 4. Used only where the AVX2 kernels exist. The lookup
 // loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a serial chain
 // of divisions and a square root per batch (7 divisions then, 2 now), and with AVX-512 4
 // independent chains side by side took the room100k lookup from 7.0-7.4 to 5.1-5.9 ms where 2
@@ -202,7 +196,8 @@ struct MsmBatch {
   static constexpr bool kEnabled = true;
   static constexpr int kGroups = 4;
   MsmConsts k;
-  Bilinear8x2Fn bilinear8x4;
+  Bilinear8x2Fn bilinear8x4;  // the taps, for the AVX-512 form
+  Mix8x4Fn mix4;              // the mixed moments, for the AVX2 form
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
   bool avx512;  // the reconstruction in 8 lanes (use_avx512_paths) or in two halves of 4
@@ -212,38 +207,53 @@ struct MsmBatch {
     if (prefetch8) prefetch8(c, r, moments, 4);
   }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
-    alignas(32) float v[4][4][8], fx[8], fy[8];
-    bilinear8x4(c, r, moments, v, fx, fy);
 #if defined(__x86_64__)
-    const float(*vp)[4][8] = v;
-    const float *fxp = fx, *fyp = fy, *dp = r.depth;
-    if (avx512)
+    const float* dp = r.depth;
+    if (avx512) {
+      alignas(32) float v[4][4][8], fx[8], fy[8];
+      bilinear8x4(c, r, moments, v, fx, fy);
+      const float(*vp)[4][8] = v;
+      const float *fxp = fx, *fyp = fy;
       msm_batch_avx512<1>(k, &vp, &fxp, &fyp, &dp, &out);
-    else
-      msm_batch_avx2<1>(k, &vp, &fxp, &fyp, &dp, &out);
+    } else {
+      alignas(32) double mixed[4][8];
+      mix4(c, r, moments, mixed);
+      const double(*mp)[8] = mixed;
+      msm_batch_avx2<1>(k, &mp, &dp, &out);
+    }
 #endif
   }
   // kGroups batches at once: in 8 lanes with AVX-512, else kAvx2Groups at a time in halves of 4.
   void groups(const MapLookupConsts& c, const Receivers8* r, float (*out)[8]) const {
 #if defined(__x86_64__)
     constexpr int G = kGroups;
-    alignas(32) float v[G][4][4][8], fx[G][8], fy[G][8];
-    const float(*vp[G])[4][8];
-    const float *fxp[G], *fyp[G], *dp[G];
+    const float* dp[G];
     float* op[G];
     for (int h = 0; h < G; ++h) {
-      bilinear8x4(c, r[h], moments, v[h], fx[h], fy[h]);
-      vp[h] = v[h];
-      fxp[h] = fx[h];
-      fyp[h] = fy[h];
       dp[h] = r[h].depth;
       op[h] = out[h];
     }
-    if (avx512)
+    if (avx512) {
+      alignas(32) float v[G][4][4][8], fx[G][8], fy[G][8];
+      const float(*vp[G])[4][8];
+      const float *fxp[G], *fyp[G];
+      for (int h = 0; h < G; ++h) {
+        bilinear8x4(c, r[h], moments, v[h], fx[h], fy[h]);
+        vp[h] = v[h];
+        fxp[h] = fx[h];
+        fyp[h] = fy[h];
+      }
       msm_batch_avx512<G>(k, vp, fxp, fyp, dp, op);
-    else
-      for (int h = 0; h < G; h += kAvx2Groups)
-        msm_batch_avx2<kAvx2Groups>(k, vp + h, fxp + h, fyp + h, dp + h, op + h);
+      return;
+    }
+    alignas(32) double mixed[G][4][8];
+    const double(*mp[G])[8];
+    for (int h = 0; h < G; ++h) {
+      mix4(c, r[h], moments, mixed[h]);
+      mp[h] = mixed[h];
+    }
+    for (int h = 0; h < G; h += kAvx2Groups)
+      msm_batch_avx2<kAvx2Groups>(k, mp + h, dp + h, op + h);
 #endif
   }
 };
@@ -263,9 +273,10 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       for (int j = 0; j < 4; ++j) P[j][i] = map.a[fi][4 * idx[i] + size_t(j)];
     return msm_value(k, P, bl.fx, bl.fy, r.depth);
   };
-  MsmBatch batch{k, bilinear8_interleaved4_simd(), plane_gather(map.a), prefetch8_simd(),
-                 use_avx512_paths()};
-  const bool gathers = batch.bilinear8x4 != nullptr && batch.moments.ok;
+  MsmBatch batch{k, bilinear8_interleaved4_simd(), bilinear8_mix4_simd(), plane_gather(map.a),
+                 prefetch8_simd(), use_avx512_paths()};
+  const bool gathers =
+      batch.bilinear8x4 != nullptr && batch.mix4 != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

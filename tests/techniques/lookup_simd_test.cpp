@@ -345,6 +345,64 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
   check_interleaved_taps(four, 4);
 }
 
+// The AVX2 bilinear mix of four values per texel (MSM's moments) against a sum written out here
+// from the scalar taps: each active lane's m[v] = ((((0 + w0·v0) + w1·v1) + w2·v2) + w3·v3) in
+// double with bilinear_weights' w, bit for bit, on faces 1, 2 and 9 texels wide (the lane-by-lane
+// fallback, the edge-clamped lanes and the wide loads), and zeros in the inactive lanes.
+TEST(LookupSimd, BilinearMixOfFourValuesIsTheScalarSumAtEveryEdge) {
+  const Mix8x4Fn mix = bilinear8_mix4_simd();
+  if (!mix) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
+  const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
+  MapLookupConsts c;
+  std::vector<float> plane;
+  PlaneGather g;
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int f = 0; f < 3; ++f) {
+    g.offset[f] = int32_t(plane.size());
+    // Moments of a random depth: values whose products with the weights round.
+    for (int i = 0; i < widths[f] * heights[f]; ++i) {
+      const float d = u(rng);
+      for (const float v : {d, d * d, d * d * d, d * d * d * d}) plane.push_back(v);
+    }
+    c.width[f] = widths[f];
+    c.height[f] = heights[f];
+  }
+  g.base = plane.data();
+  g.ok = true;
+  int checked = 0, inexact = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Receivers8 r = edge_receivers(rng, trial);
+    alignas(32) double m[4][8];
+    mix(c, r, g, m);
+    for (int k = 0; k < 8; ++k) {
+      if (!r.active[k]) {
+        for (int v = 0; v < 4; ++v) ASSERT_EQ(m[v][k], 0.0) << "inactive lane " << k;
+        continue;
+      }
+      const int f = r.face[k];
+      const Bilinear b = bilinear_taps(vec2(r.sx[k], r.sy[k]), widths[f], heights[f]);
+      size_t idx[4];
+      bilinear_indices(b, widths[f], idx);
+      const double w[4] = {(1.0 - b.fx) * (1.0 - b.fy), double(b.fx) * (1.0 - b.fy),
+                           (1.0 - b.fx) * double(b.fy), double(b.fx) * double(b.fy)};
+      for (int v = 0; v < 4; ++v) {
+        double want = 0.0;
+        for (int t = 0; t < 4; ++t) want += w[t] * plane[size_t(g.offset[f]) + 4 * idx[t] + size_t(v)];
+        ASSERT_EQ(m[v][k], want) << "trial " << trial << " lane " << k << " value " << v;
+        // A sum whose terms round: the order of the additions is what is tested.
+        long double exact = 0.0L;
+        for (int t = 0; t < 4; ++t)
+          exact += (long double)w[t] * plane[size_t(g.offset[f]) + 4 * idx[t] + size_t(v)];
+        inexact += (long double)want != exact;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20000);
+  EXPECT_GT(inexact, 4000);  // 8,485 of the ~90,000 sums here
+}
+
 // merge8 is the pixel loop's per-lane rule: active lanes get std::clamp(vis, 0, 1) (a NaN stays
 // NaN, -0 stays -0), inactive lanes keep the receivers' mask; texels are copied.
 TEST(LookupSimd, Merge8IsThePixelLoopsClampPerLane) {
