@@ -721,8 +721,8 @@ SL_AVX2 void bilinear8_mix4_avx2(const MapLookupConsts& c, const Receivers8& r,
 SL_AVX2 void prefetch8_avx2(const MapLookupConsts& c, const Receivers8& r,
                             const PlaneGather& plane, int floats_per_texel) {
   const __m256i face = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face));
-  const int active_bits =
-      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.active))));
+  const __m256i active = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.active));
+  const int active_bits = _mm256_movemask_ps(_mm256_castsi256_ps(active));
   if (!active_bits) return;
   const __m256i w = lane_i(c.width, face), h = lane_i(c.height, face);
   const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
@@ -732,16 +732,20 @@ SL_AVX2 void prefetch8_avx2(const MapLookupConsts& c, const Receivers8& r,
   const __m256i y0 = clamp_i(iy, zero, _mm256_sub_epi32(h, one));
   const __m256i y1 = clamp_i(_mm256_add_epi32(iy, one), zero, _mm256_sub_epi32(h, one));
   const __m256i off = lane_i(plane.offset, face), fpt = _mm256_set1_epi32(floats_per_texel);
+  // Inactive lanes (whose face may not exist) take the first active lane's rows, as pair_rows'
+  // do, so every lane prefetches without a branch.
+  const __m256i first = _mm256_set1_epi32(__builtin_ctz(unsigned(active_bits)));
   alignas(32) int32_t at[2][8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(at[0]),
-                     _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(y0, w), x0), fpt)));
-  _mm256_store_si256(reinterpret_cast<__m256i*>(at[1]),
-                     _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(y1, w), x0), fpt)));
-  for (int k = 0; k < 8; ++k)
-    if ((active_bits >> k) & 1) {
-      _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[0][k]), _MM_HINT_T0);
-      _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[1][k]), _MM_HINT_T0);
-    }
+  const __m256i rows[2] = {y0, y1};
+  for (int y = 0; y < 2; ++y) {
+    const __m256i a = _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(rows[y], w), x0), fpt));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at[y]),
+                       _mm256_blendv_epi8(_mm256_permutevar8x32_epi32(a, first), a, active));
+  }
+  for (int k = 0; k < 8; ++k) {
+    _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[0][k]), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[1][k]), _MM_HINT_T0);
+  }
 }
 
 }  // namespace

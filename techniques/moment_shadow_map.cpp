@@ -252,8 +252,14 @@ struct MsmBatch {
       mix4(c, r[h], moments, mixed[h]);
       mp[h] = mixed[h];
     }
-    for (int h = 0; h < G; h += kAvx2Groups)
-      msm_batch_avx2<kAvx2Groups>(k, mp + h, dp + h, op + h);
+    for (int h = 0; h < G; h += kAvx2Groups) {
+      // A pair of batches with no active lane (uncovered or unlit pixels) needs no
+      // reconstruction: the lookup loop keeps those lanes' masks (merge8).
+      bool any = false;
+      for (int j = h; j < h + kAvx2Groups; ++j)
+        for (int lane = 0; lane < 8; ++lane) any |= r[j].active[lane] != 0;
+      if (any) msm_batch_avx2<kAvx2Groups>(k, mp + h, dp + h, op + h);
+    }
 #endif
   }
 };
