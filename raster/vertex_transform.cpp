@@ -34,7 +34,7 @@ SL_AVX2 void transform_vertices_avx2(const mat4& m, const vec3* pos, size_t n, f
                                      float guard_y, vec4* clip, uint32_t* code) {
   static_assert(sizeof(vec3) == 12 && sizeof(vec4) == 16, "packed glm vectors");
   const size_t full = n - n % 8;
-  const float* p = &pos[0].x;
+  const float* p = reinterpret_cast<const float*>(pos);  // packed x, y, z (no access when n = 0)
   // Lane k reads vertex k's x, y and z: floats 3k, 3k + 1, 3k + 2 of the batch.
   const __m256i idx = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   __m256 mc[4][4];
@@ -84,7 +84,7 @@ SL_AVX2 void transform_vertices_avx2(const mat4& m, const vec3* pos, size_t n, f
     const __m256 v11 = _mm256_shuffle_ps(t0, t2, 0xEE);  // vertex 1 | vertex 5
     const __m256 v22 = _mm256_shuffle_ps(t1, t3, 0x44);  // vertex 2 | vertex 6
     const __m256 v33 = _mm256_shuffle_ps(t1, t3, 0xEE);  // vertex 3 | vertex 7
-    float* out = &clip[i].x;
+    float* out = reinterpret_cast<float*>(clip + i);
     _mm256_storeu_ps(out + 0, _mm256_permute2f128_ps(v01, v11, 0x20));
     _mm256_storeu_ps(out + 8, _mm256_permute2f128_ps(v22, v33, 0x20));
     _mm256_storeu_ps(out + 16, _mm256_permute2f128_ps(v01, v11, 0x31));
