@@ -80,7 +80,7 @@ struct PlaneRows {
 // every row adds step_y (dy) to them. A row with no covered lane still runs its (then empty)
 // blend and store: a branch there was mispredicted on the small triangles' partial rows.
 // kInside: the block lies inside all three edges, so every lane is covered and the edge values
-// are not stepped. A loop of its own drops the coverage mask's four operations per row, which
+// are neither read nor stepped (lo, hi and dy may be null). A loop of its own drops the coverage mask's four operations per row, which
 // are all ones there: 3 % of this kernel's instructions on room100k's cube at 2048, where
 // inside blocks carry most pixels.
 template <bool kInside>
@@ -134,19 +134,20 @@ SL_AVX2 static void depth_row8_avx2_impl(const DepthRow8& rw, float* z, size_t s
   for (int j = 0; j < rw.blocks; ++j) {
     bool inside = false;
     if (row_block(rw, e, inside)) {
-      __m256i lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        const __m256i ek = _mm256_set1_epi64x(e[k]);
-        lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
-        hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
-      }
       const __m256 zx = plane_x_avx2(rw.z_dx, rw.ox + 8 * j);
       float* const zb = z + 8 * size_t(j);
       uint32_t* const idb = rw.ids ? rw.ids + 8 * size_t(j) : nullptr;
-      if (inside)
-        block_rows_avx2<true>(lo, hi, dy, zx, p, z_lo, z_hi, id, zb, idb, stride);
-      else
+      if (inside) {  // no edge values needed
+        block_rows_avx2<true>(nullptr, nullptr, nullptr, zx, p, z_lo, z_hi, id, zb, idb, stride);
+      } else {
+        __m256i lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) {
+          const __m256i ek = _mm256_set1_epi64x(e[k]);
+          lo[k] = _mm256_add_epi64(ek, lane_lo[k]);
+          hi[k] = _mm256_add_epi64(ek, lane_hi[k]);
+        }
         block_rows_avx2<false>(lo, hi, dy, zx, p, z_lo, z_hi, id, zb, idb, stride);
+      }
     }
     for (int k = 0; k < 3; ++k) e[k] += rw.block_step[k];
   }

@@ -527,6 +527,14 @@ SL_AVX2 void bilinear8_pairs_avx2(const MapLookupConsts& c, const Receivers8& r,
   }
 }
 
+// v with each inactive lane's value replaced by the first active lane's (active: all-ones lanes;
+// active_bits: its movemask, not 0), so that every lane holds a valid index without a branch per
+// lane.
+SL_AVX2 inline __m256i fill_inactive(__m256i v, __m256i active, int active_bits) {
+  const __m256i first = _mm256_set1_epi32(__builtin_ctz(unsigned(active_bits)));
+  return _mm256_blendv_epi8(_mm256_permutevar8x32_epi32(v, first), v, active);
+}
+
 // The shared front of the interleaved kernels below, for a plane of n values per texel (texel
 // i's at plane.base[offset + n·i + v]): the fractions into fx, fy, and per lane and tap row the
 // float index where its pair of texels starts, at clamp(ix, 0, w − 2), inactive lanes pointed at
@@ -573,16 +581,13 @@ SL_AVX2 inline bool pair_rows(const MapLookupConsts& c, const Receivers8& r, con
   const __m256i start = clamp_i(ix, zero, wm2);
   out.left = _mm256_castsi256_ps(_mm256_cmpgt_epi32(zero, ix));
   out.right = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ix, wm2));
-  // Inactive lanes take the first active lane's index: a permute and a blend per row, where a
-  // branch per lane was a third of this function's instructions.
-  const __m256i first_active = _mm256_set1_epi32(__builtin_ctz(unsigned(active_bits)));
+  // Inactive lanes take the first active lane's index (fill_inactive), where a branch per lane
+  // was a third of this function's instructions.
   const __m256i row[2] = {_mm256_add_epi32(r0, start), _mm256_add_epi32(r1, start)};
-  for (int y = 0; y < 2; ++y) {
-    const __m256i at = _mm256_add_epi32(off, _mm256_mullo_epi32(row[y], nv));
-    const __m256i first = _mm256_permutevar8x32_epi32(at, first_active);
+  for (int y = 0; y < 2; ++y)
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.at[y]),
-                       _mm256_blendv_epi8(first, at, _mm256_castps_si256(out.active)));
-  }
+                       fill_inactive(_mm256_add_epi32(off, _mm256_mullo_epi32(row[y], nv)),
+                                     _mm256_castps_si256(out.active), active_bits));
   return true;
 }
 
@@ -734,13 +739,11 @@ SL_AVX2 void prefetch8_avx2(const MapLookupConsts& c, const Receivers8& r,
   const __m256i off = lane_i(plane.offset, face), fpt = _mm256_set1_epi32(floats_per_texel);
   // Inactive lanes (whose face may not exist) take the first active lane's rows, as pair_rows'
   // do, so every lane prefetches without a branch.
-  const __m256i first = _mm256_set1_epi32(__builtin_ctz(unsigned(active_bits)));
   alignas(32) int32_t at[2][8];
   const __m256i rows[2] = {y0, y1};
   for (int y = 0; y < 2; ++y) {
     const __m256i a = _mm256_add_epi32(off, _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(rows[y], w), x0), fpt));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(at[y]),
-                       _mm256_blendv_epi8(_mm256_permutevar8x32_epi32(a, first), a, active));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at[y]), fill_inactive(a, active, active_bits));
   }
   for (int k = 0; k < 8; ++k) {
     _mm_prefetch(reinterpret_cast<const char*>(plane.base + at[0][k]), _MM_HINT_T0);
