@@ -26,9 +26,9 @@ void GBuffer::reshape(int w, int h) {
   height = h;
   const size_t n = pixel_count();
   position.resize(n);
-  normal.resize(n);
+  normal.clear();  // deferred: core/gbuffer_shading.h
   geo_normal.resize(n);
-  uv.resize(n);
+  uv.clear();
   depth.resize(n);
   mesh_id.resize(n);
   prim_id.resize(n);

@@ -27,9 +27,13 @@ struct GBuffer {
   int height = 0;
   // Per pixel, row-major (index y * width + x). Valid only where covered != 0.
   std::vector<vec3> position;        // world space, metres (interpolated, perspective-correct)
+  // The shading attributes, optional: the camera pass leaves them empty (size 0), since only
+  // the pictures for people read them; shading_attributes (core/gbuffer_shading.h) gives a
+  // pixel's from its triangle where they are absent. Writers of other GBuffers may fill them.
   std::vector<vec3> normal;          // shading normal, world space, unit length
-  std::vector<vec3> geo_normal;      // geometric normal of the triangle, world space, unit
   std::vector<vec2> uv;              // texture coordinates (0 when the mesh has none)
+  std::vector<vec3> geo_normal;      // geometric normal of the triangle, world space, unit,
+                                     // facing the eye (two-sided)
   std::vector<float> depth;          // view-space distance along -z, metres (+inf where empty)
   std::vector<uint32_t> mesh_id;     // index into Scene::meshes, kNoPrimitive where empty
   std::vector<uint32_t> prim_id;     // triangle index within that mesh, kNoPrimitive where empty
@@ -48,8 +52,12 @@ struct GBuffer {
   }
   // Sizes every array and resets it to the empty values (covered 0, ids kNoPrimitive, ...).
   void resize(int w, int h);
-  // Sizes every array keeping whatever values are there (for writers that set every pixel).
+  // Sizes every array but the shading attributes, which it empties, keeping whatever values
+  // are there (for the camera pass, which sets every pixel).
   void reshape(int w, int h);
+  bool has_shading_attributes() const {
+    return normal.size() == pixel_count() && uv.size() == pixel_count();
+  }
 };
 
 }  // namespace shadowlab

@@ -10,6 +10,7 @@ namespace shadowlab {
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
 using ivec2 = glm::ivec2;
 using mat4 = glm::mat4;

@@ -12,11 +12,12 @@
 namespace shadowlab {
 namespace {
 
-// Bytes per camera pixel alive at once in the largest run: the GBuffer (position, shading and
-// geometric normals, uv, depth, mesh and primitive ids, coverage: 57 B), the camera pass's
+// Bytes per camera pixel alive at once in the largest run: the GBuffer (position, geometric
+// normal, depth, mesh and primitive ids, coverage: 37 B; the shading normal and uv are deferred,
+// core/gbuffer_shading.h), the camera pass's
 // visibility buffer (8 B), a technique's mask and texel image (8 B), the reference mask (4 B),
 // the metric's double images (blurred masks and scratch, ~40 B in a sweep).
-constexpr uint64_t kBytesPerPixel = 57 + 8 + 8 + 4 + 40;
+constexpr uint64_t kBytesPerPixel = 37 + 8 + 8 + 4 + 40;
 // Bytes per triangle: positions, normals and indices, the transformed vertices and bins of a
 // pass, Embree's BVH.
 constexpr uint64_t kBytesPerTriangle = 400;

@@ -33,28 +33,15 @@ struct PixelRays {
   }
 };
 
-// Lane k of the mixed-triangle SIMD resolve: the triangle's terms, its vertex normals and uvs
-// (zero, and flagged absent, where the mesh has none or the lane shows no triangle).
-void fill_lane(ResolveLanes8& l, int k, const Mesh* mesh, const uint32_t* idx, const vec3& e1,
-               const vec3& e2, const vec3& s, const vec3& q, const vec3& gn, float e2q) {
+// Lane k of the mixed-triangle SIMD resolve: the triangle's terms.
+void fill_lane(ResolveLanes8& l, int k, const vec3& e1, const vec3& e2, const vec3& gn,
+               float e2q) {
   for (int c = 0; c < 3; ++c) {
     l.e1[c][k] = e1[c];
     l.e2[c][k] = e2[c];
-    l.s[c][k] = s[c];
-    l.q[c][k] = q[c];
     l.gn[c][k] = gn[c];
   }
   l.e2q[k] = e2q;
-  const bool has_n = mesh && !mesh->normals.empty(), has_uv = mesh && !mesh->uvs.empty();
-  l.has_n[k] = has_n ? -1 : 0;
-  l.has_uv[k] = has_uv ? -1 : 0;
-  for (int v = 0; v < 3; ++v) {
-    const vec3 n = has_n ? mesh->normals[idx[v]] : vec3(0.0f);
-    const vec2 uv = has_uv ? mesh->uvs[idx[v]] : vec2(0.0f);
-    for (int c = 0; c < 3; ++c) l.n[v][c][k] = n[c];
-    l.uv[v][0][k] = uv.x;
-    l.uv[v][1][k] = uv.y;
-  }
 }
 
 }  // namespace
@@ -84,8 +71,9 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   if (stats) *stats = st;
 
   // Resolve, once per pixel: intersect the pixel's camera ray with the visible triangle's
-  // plane (barycentrics and view depth), then interpolate the attributes. Every pixel is
-  // written, covered or not.
+  // plane (view depth, position) and orient its normal. Every pixel is written, covered or
+  // not. The interpolated attributes (shading normal, uv) are deferred: only the pictures for
+  // people read them, and writing them cost a fifth of this pass (core/gbuffer_shading.h).
   const std::vector<uint32_t> first = scene_first_triangles(scene);
   const PixelRays rays(cam);
   const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
@@ -98,9 +86,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     uint32_t m = 0;
     struct {
       uint32_t t = kNoPrimitive, m = 0, p = 0;
-      const Mesh* mesh = nullptr;
-      const uint32_t* idx = nullptr;
-      vec3 e1{0.0f}, e2{0.0f}, s{0.0f}, q{0.0f}, gn{0.0f};
+      vec3 e1{0.0f}, e2{0.0f}, gn{0.0f};
       float e2q = 0.0f;
     } tri;
     ResolveRun8 run;  // the SIMD path's copy of the cached triangle's terms
@@ -115,15 +101,14 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
         m = uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin()) - 1;
       tri.t = t;
       tri.m = m;
-      tri.mesh = &scene.meshes[m];
+      const Mesh& mesh = scene.meshes[m];
       tri.p = t - first[m];
-      tri.idx = &tri.mesh->indices[3 * size_t(tri.p)];
-      const vec3& p0 = tri.mesh->positions[tri.idx[0]];
-      tri.e1 = tri.mesh->positions[tri.idx[1]] - p0;
-      tri.e2 = tri.mesh->positions[tri.idx[2]] - p0;
-      tri.s = rays.eye - p0;
-      tri.q = glm::cross(tri.s, tri.e1);
-      tri.e2q = glm::dot(tri.e2, tri.q);
+      const uint32_t* idx = &mesh.indices[3 * size_t(tri.p)];
+      const vec3& p0 = mesh.positions[idx[0]];
+      tri.e1 = mesh.positions[idx[1]] - p0;
+      tri.e2 = mesh.positions[idx[2]] - p0;
+      // Möller–Trumbore's e2·q with s = eye − p0 and q = s × e1: the ray parameter's numerator.
+      tri.e2q = glm::dot(tri.e2, glm::cross(rays.eye - p0, tri.e1));
       const vec3 n = glm::cross(tri.e1, tri.e2);
       const float nl = glm::length(n);
       tri.gn = nl > 0.0f ? n / nl : vec3(0.0f, 1.0f, 0.0f);
@@ -139,8 +124,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     run.height = rays.height;
     auto empty_pixel = [&](size_t i) {
       g.position[i] = vec3(0.0f);
-      g.normal[i] = g.geo_normal[i] = vec3(0.0f);
-      g.uv[i] = vec2(0.0f);
+      g.geo_normal[i] = vec3(0.0f);
       g.depth[i] = std::numeric_limits<float>::infinity();
       g.mesh_id[i] = g.prim_id[i] = kNoPrimitive;
       g.covered[i] = 0;
@@ -170,22 +154,14 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             const uint32_t tk = ids[k];
             if (tk != kNoPrimitive) {
               load_triangle(tk);
-              const vec3* n[3];
-              const vec2* uv[3];
-              for (int v = 0; v < 3; ++v) {
-                n[v] = tri.mesh->normals.empty() ? nullptr : &tri.mesh->normals[tri.idx[v]];
-                uv[v] = tri.mesh->uvs.empty() ? nullptr : &tri.mesh->uvs[tri.idx[v]];
-              }
               const uint32_t run_mask = ((1u << k1) - 1u) & ~((1u << k) - 1u);
-              resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.s, tri.q, tri.gn,
-                                   tri.e2q, n[0] ? n : nullptr, uv[0] ? uv : nullptr, tri.m,
+              resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.gn, tri.e2q, tri.m,
                                    tri.p);
             }
           }
           lanes_w.covered = covered;
-          lanes16(run, lanes_w, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],
-                  &g.geo_normal[i], &g.uv[i], &g.depth[i], &g.mesh_id[i], &g.prim_id[i],
-                  &g.covered[i]);
+          lanes16(run, lanes_w, x, int(y), &vis.inv_w[i], &g.position[i], &g.geo_normal[i],
+                  &g.depth[i], &g.mesh_id[i], &g.prim_id[i], &g.covered[i]);
           x += 15;
           continue;
         }
@@ -204,18 +180,17 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             for (int k = 0; k < 8; ++k) {
               const uint32_t tk = vis.ids[i + size_t(k)];
               if (tk == kNoPrimitive) {
-                fill_lane(lanes, k, nullptr, nullptr, tri.e1, tri.e2, tri.s, tri.q, tri.gn, 0.0f);
+                fill_lane(lanes, k, tri.e1, tri.e2, tri.gn, 0.0f);
                 continue;
               }
               load_triangle(tk);
-              fill_lane(lanes, k, tri.mesh, tri.idx, tri.e1, tri.e2, tri.s, tri.q, tri.gn,
-                        tri.e2q);
+              fill_lane(lanes, k, tri.e1, tri.e2, tri.gn, tri.e2q);
               g.mesh_id[i + size_t(k)] = tri.m;
               g.prim_id[i + size_t(k)] = tri.p;
               g.covered[i + size_t(k)] = 1;
             }
-            lanes8(run, lanes, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i],
-                   &g.geo_normal[i], &g.uv[i], &g.depth[i]);
+            lanes8(run, lanes, x, int(y), &vis.inv_w[i], &g.position[i], &g.geo_normal[i],
+                   &g.depth[i]);
             for (int k = 0; k < 8; ++k)
               if (vis.ids[i + size_t(k)] == kNoPrimitive) empty_pixel(i + size_t(k));
             x += 7;
@@ -230,17 +205,10 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             run_t = t;
             run.e1 = tri.e1;
             run.e2 = tri.e2;
-            run.s = tri.s;
-            run.q = tri.q;
             run.gn = tri.gn;
             run.e2q = tri.e2q;
-            for (int k = 0; k < 3; ++k) {
-              run.n[k] = tri.mesh->normals.empty() ? nullptr : &tri.mesh->normals[tri.idx[k]];
-              run.uv[k] = tri.mesh->uvs.empty() ? nullptr : &tri.mesh->uvs[tri.idx[k]];
-            }
           }
-          simd(run, x, int(y), &vis.inv_w[i], &g.position[i], &g.normal[i], &g.geo_normal[i],
-               &g.uv[i], &g.depth[i]);
+          simd(run, x, int(y), &vis.inv_w[i], &g.position[i], &g.geo_normal[i], &g.depth[i]);
           for (size_t k = i; k < i + 8; ++k) {
             g.mesh_id[k] = tri.m;
             g.prim_id[k] = tri.p;
@@ -254,49 +222,26 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           continue;
         }
         load_triangle(t);
-        const Mesh& mesh = *tri.mesh;
-        const uint32_t p = tri.p;
-        const uint32_t* idx = tri.idx;
         const vec3 d = rays.dir(x, int(y));
-        // Möller–Trumbore without the inside test (the rasterizer decided coverage); the terms
-        // that do not depend on the ray come from the triangle cache.
+        // Möller–Trumbore's ray parameter without the inside test (the rasterizer decided
+        // coverage); the terms that do not depend on the ray come from the triangle cache.
         const vec3 pv = glm::cross(d, tri.e2);
         const float det = glm::dot(tri.e1, pv);
-        vec3 l(1.0f / 3.0f);
         float depth = 1.0f / vis.inv_w[i];
         if (std::fabs(det) > 1e-30f) {
-          const float inv_det = 1.0f / det;
-          const float u = glm::dot(tri.s, pv) * inv_det;
-          const float v = glm::dot(d, tri.q) * inv_det;
-          const float tt = tri.e2q * inv_det;
+          const float tt = tri.e2q * (1.0f / det);
           // Only trust a hit in front of the eye; edge-on triangles keep the raster depth.
-          if (std::isfinite(tt) && tt > 0.0f) {
-            l = vec3(1.0f - u - v, u, v);
-            depth = tt;
-          }
+          if (std::isfinite(tt) && tt > 0.0f) depth = tt;
         }
         vec3 gn = tri.gn;
         const vec3 pos = rays.eye + depth * d;
-        vec3 sn = gn;
-        if (!mesh.normals.empty()) {
-          const vec3 n = l.x * mesh.normals[idx[0]] + l.y * mesh.normals[idx[1]] +
-                         l.z * mesh.normals[idx[2]];
-          const float nl = glm::length(n);
-          if (nl > 0.0f) sn = n / nl;
-        }
-        // Two-sided: make both normals face the eye.
+        // Two-sided: the normal faces the eye.
         if (glm::dot(gn, cam.eye - pos) < 0.0f) gn = -gn;
-        if (glm::dot(sn, gn) < 0.0f) sn = -sn;
-        vec2 uv(0.0f);
-        if (!mesh.uvs.empty())
-          uv = l.x * mesh.uvs[idx[0]] + l.y * mesh.uvs[idx[1]] + l.z * mesh.uvs[idx[2]];
         g.position[i] = pos;
-        g.normal[i] = sn;
         g.geo_normal[i] = gn;
-        g.uv[i] = uv;
         g.depth[i] = depth;
         g.mesh_id[i] = tri.m;
-        g.prim_id[i] = p;
+        g.prim_id[i] = tri.p;
         g.covered[i] = 1;
       }
       // The row's positions, back from L1 once the row is written (reading them right after

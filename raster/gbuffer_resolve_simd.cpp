@@ -58,16 +58,8 @@ struct SameTriangle {
   const ResolveRun8& r;
   SL_AVX2 V3 e1() const { return bc3(r.e1); }
   SL_AVX2 V3 e2() const { return bc3(r.e2); }
-  SL_AVX2 V3 s() const { return bc3(r.s); }
-  SL_AVX2 V3 q() const { return bc3(r.q); }
   SL_AVX2 V3 gn() const { return bc3(r.gn); }
   SL_AVX2 __m256 e2q() const { return bc(r.e2q); }
-  bool any_n() const { return r.n[0] != nullptr; }
-  bool any_uv() const { return r.uv[0] != nullptr; }
-  SL_AVX2 __m256 has_n() const { return _mm256_castsi256_ps(_mm256_set1_epi32(-1)); }
-  SL_AVX2 __m256 has_uv() const { return _mm256_castsi256_ps(_mm256_set1_epi32(-1)); }
-  SL_AVX2 __m256 n(int k, int c) const { return bc((&r.n[k]->x)[c]); }
-  SL_AVX2 __m256 uv(int k, int c) const { return bc((&r.uv[k]->x)[c]); }
 };
 
 // Each lane's own triangle (loads).
@@ -75,35 +67,15 @@ struct LaneTriangles {
   const ResolveLanes8& l;
   SL_AVX2 V3 e1() const { return load3(l.e1); }
   SL_AVX2 V3 e2() const { return load3(l.e2); }
-  SL_AVX2 V3 s() const { return load3(l.s); }
-  SL_AVX2 V3 q() const { return load3(l.q); }
   SL_AVX2 V3 gn() const { return load3(l.gn); }
   SL_AVX2 __m256 e2q() const { return _mm256_load_ps(l.e2q); }
-  SL_AVX2 bool any_n() const {
-    return !_mm256_testz_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(l.has_n)),
-                               _mm256_set1_epi32(-1));
-  }
-  SL_AVX2 bool any_uv() const {
-    return !_mm256_testz_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(l.has_uv)),
-                               _mm256_set1_epi32(-1));
-  }
-  SL_AVX2 __m256 has_n() const { return _mm256_load_ps(reinterpret_cast<const float*>(l.has_n)); }
-  SL_AVX2 __m256 has_uv() const { return _mm256_load_ps(reinterpret_cast<const float*>(l.has_uv)); }
-  SL_AVX2 __m256 n(int k, int c) const { return _mm256_load_ps(l.n[k][c]); }
-  SL_AVX2 __m256 uv(int k, int c) const { return _mm256_load_ps(l.uv[k][c]); }
 };
-
-// ((l0·a + l1·b) + l2·c) with per-lane vertex values.
-SL_AVX2 inline __m256 interp_v(__m256 l0, __m256 l1, __m256 l2, __m256 a, __m256 b, __m256 c) {
-  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(l0, a), _mm256_mul_ps(l1, b)),
-                       _mm256_mul_ps(l2, c));
-}
 
 // The scalar resolve's operations for 8 pixels (gbuffer_pass.cpp), triangle terms from `t`.
 template <class Terms>
 SL_AVX2 inline void resolve8(const ResolveRun8& r, const Terms& t, int x, int y,
-                             const float* inv_w, vec3* position, vec3* normal, vec3* geo_normal,
-                             vec2* uv, float* depth_out) {
+                             const float* inv_w, vec3* position, vec3* geo_normal,
+                             float* depth_out) {
   const __m256 zero = _mm256_setzero_ps(), one = bc(1.0f), sign = bc(-0.0f);
   // Ray directions, as PixelRays::dir.
   const __m256 xs = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x),
@@ -119,66 +91,35 @@ SL_AVX2 inline void resolve8(const ResolveRun8& r, const Terms& t, int x, int y,
   const V3 pv = cross(d, t.e2());
   const __m256 det = dot(t.e1(), pv);
   __m256 depth = _mm256_div_ps(one, _mm256_loadu_ps(inv_w));
-  __m256 l0 = bc(1.0f / 3.0f), l1 = l0, l2 = l0;
   const __m256 ok_det = _mm256_cmp_ps(_mm256_andnot_ps(sign, det), bc(1e-30f), _CMP_GT_OQ);
   const __m256 inv_det = _mm256_div_ps(one, det);
-  const __m256 u = _mm256_mul_ps(dot(t.s(), pv), inv_det);
-  const __m256 v = _mm256_mul_ps(dot(d, t.q()), inv_det);
   const __m256 tt = _mm256_mul_ps(t.e2q(), inv_det);
   const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(sign, tt), bc(__builtin_inff()), _CMP_LT_OQ);
   const __m256 hit = _mm256_and_ps(_mm256_and_ps(ok_det, finite), _mm256_cmp_ps(tt, zero, _CMP_GT_OQ));
-  l0 = select(hit, _mm256_sub_ps(_mm256_sub_ps(one, u), v), l0);
-  l1 = select(hit, u, l1);
-  l2 = select(hit, v, l2);
   depth = select(hit, tt, depth);
   const V3 pos = {_mm256_add_ps(bc(r.eye.x), _mm256_mul_ps(depth, d.x)),
                   _mm256_add_ps(bc(r.eye.y), _mm256_mul_ps(depth, d.y)),
                   _mm256_add_ps(bc(r.eye.z), _mm256_mul_ps(depth, d.z))};
+  // Two-sided: the normal faces the eye.
   V3 gn = t.gn();
-  V3 sn = gn;
-  if (t.any_n()) {
-    const V3 n = {interp_v(l0, l1, l2, t.n(0, 0), t.n(1, 0), t.n(2, 0)),
-                  interp_v(l0, l1, l2, t.n(0, 1), t.n(1, 1), t.n(2, 1)),
-                  interp_v(l0, l1, l2, t.n(0, 2), t.n(1, 2), t.n(2, 2))};
-    const __m256 nl = _mm256_sqrt_ps(dot(n, n));
-    // Lanes whose mesh has normals and whose interpolated normal is not zero.
-    const __m256 use = _mm256_and_ps(_mm256_cmp_ps(nl, zero, _CMP_GT_OQ), t.has_n());
-    sn = {select(use, _mm256_div_ps(n.x, nl), sn.x), select(use, _mm256_div_ps(n.y, nl), sn.y),
-          select(use, _mm256_div_ps(n.z, nl), sn.z)};
-  }
-  // Two-sided: both normals face the eye.
   const V3 to_eye = {_mm256_sub_ps(bc(r.eye.x), pos.x), _mm256_sub_ps(bc(r.eye.y), pos.y),
                      _mm256_sub_ps(bc(r.eye.z), pos.z)};
   const __m256 flip_g = _mm256_and_ps(_mm256_cmp_ps(dot(gn, to_eye), zero, _CMP_LT_OQ), sign);
   gn = {_mm256_xor_ps(gn.x, flip_g), _mm256_xor_ps(gn.y, flip_g), _mm256_xor_ps(gn.z, flip_g)};
-  const __m256 flip_s = _mm256_and_ps(_mm256_cmp_ps(dot(sn, gn), zero, _CMP_LT_OQ), sign);
-  sn = {_mm256_xor_ps(sn.x, flip_s), _mm256_xor_ps(sn.y, flip_s), _mm256_xor_ps(sn.z, flip_s)};
   store3(position, pos);
-  store3(normal, sn);
   store3(geo_normal, gn);
   _mm256_storeu_ps(depth_out, depth);
-  if (t.any_uv()) {
-    alignas(32) float tu[8], tv[8];
-    const __m256 has = t.has_uv();
-    _mm256_store_ps(tu, _mm256_and_ps(has, interp_v(l0, l1, l2, t.uv(0, 0), t.uv(1, 0), t.uv(2, 0))));
-    _mm256_store_ps(tv, _mm256_and_ps(has, interp_v(l0, l1, l2, t.uv(0, 1), t.uv(1, 1), t.uv(2, 1))));
-    for (int i = 0; i < 8; ++i) uv[i] = vec2(tu[i], tv[i]);
-  } else {
-    for (int i = 0; i < 8; ++i) uv[i] = vec2(0.0f);
-  }
 }
 
 SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* inv_w,
-                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
-                               float* depth_out) {
-  resolve8(r, SameTriangle{r}, x, y, inv_w, position, normal, geo_normal, uv, depth_out);
+                               vec3* position, vec3* geo_normal, float* depth_out) {
+  resolve8(r, SameTriangle{r}, x, y, inv_w, position, geo_normal, depth_out);
 }
 
 SL_AVX2 void resolve_lanes8_avx2(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
-                                 int y, const float* inv_w, vec3* position, vec3* normal,
-                                 vec3* geo_normal, vec2* uv, float* depth_out) {
-  resolve8(camera, LaneTriangles{lanes}, x, y, inv_w, position, normal, geo_normal, uv,
-           depth_out);
+                                 int y, const float* inv_w, vec3* position, vec3* geo_normal,
+                                 float* depth_out) {
+  resolve8(camera, LaneTriangles{lanes}, x, y, inv_w, position, geo_normal, depth_out);
 }
 
 #undef SL_AVX2
@@ -201,10 +142,6 @@ SL_AVX512 inline W3 crossw(const W3& a, const W3& b) {
           _mm512_sub_ps(_mm512_mul_ps(a.z, b.x), _mm512_mul_ps(b.z, a.x)),
           _mm512_sub_ps(_mm512_mul_ps(a.x, b.y), _mm512_mul_ps(b.x, a.y))};
 }
-SL_AVX512 inline __m512 interpw(__m512 l0, __m512 l1, __m512 l2, __m512 a, __m512 b, __m512 c) {
-  return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(l0, a), _mm512_mul_ps(l1, b)),
-                       _mm512_mul_ps(l2, c));
-}
 SL_AVX512 inline void store3w(vec3* out, const W3& v) {
   alignas(64) float t[3][16];
   _mm512_store_ps(t[0], v.x);
@@ -218,9 +155,9 @@ SL_AVX512 inline __m512 absw(__m512 v) {
 
 // resolve8's operations on 16 lanes (compare masks where it blends).
 SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16& t, int x,
-                                      int y, const float* inv_w, vec3* position, vec3* normal,
-                                      vec3* geo_normal, vec2* uv, float* depth_out,
-                                      uint32_t* mesh_id, uint32_t* prim_id, uint8_t* covered) {
+                                      int y, const float* inv_w, vec3* position,
+                                      vec3* geo_normal, float* depth_out, uint32_t* mesh_id,
+                                      uint32_t* prim_id, uint8_t* covered) {
   const __m512 zero = _mm512_setzero_ps(), one = bw(1.0f);
   const __m512 xs = _mm512_maskz_cvtepi32_ps(
       0xFFFF, _mm512_add_epi32(_mm512_set1_epi32(x), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8,
@@ -235,49 +172,27 @@ SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16
   const W3 pv = crossw(d, load3w(t.e2));
   const __m512 det = dotw(load3w(t.e1), pv);
   __m512 depth = _mm512_div_ps(one, _mm512_loadu_ps(inv_w));
-  __m512 l0 = bw(1.0f / 3.0f), l1 = l0, l2 = l0;
   const __mmask16 ok_det = _mm512_cmp_ps_mask(absw(det), bw(1e-30f), _CMP_GT_OQ);
   const __m512 inv_det = _mm512_div_ps(one, det);
-  const __m512 u = _mm512_mul_ps(dotw(load3w(t.s), pv), inv_det);
-  const __m512 v = _mm512_mul_ps(dotw(d, load3w(t.q)), inv_det);
   const __m512 tt = _mm512_mul_ps(_mm512_load_ps(t.e2q), inv_det);
   const __mmask16 hit = __mmask16(ok_det &
                                   _mm512_cmp_ps_mask(absw(tt), bw(__builtin_inff()), _CMP_LT_OQ) &
                                   _mm512_cmp_ps_mask(tt, zero, _CMP_GT_OQ));
-  l0 = _mm512_mask_blend_ps(hit, l0, _mm512_sub_ps(_mm512_sub_ps(one, u), v));
-  l1 = _mm512_mask_blend_ps(hit, l1, u);
-  l2 = _mm512_mask_blend_ps(hit, l2, v);
   depth = _mm512_mask_blend_ps(hit, depth, tt);
   const W3 pos = {_mm512_add_ps(bw(r.eye.x), _mm512_mul_ps(depth, d.x)),
                   _mm512_add_ps(bw(r.eye.y), _mm512_mul_ps(depth, d.y)),
                   _mm512_add_ps(bw(r.eye.z), _mm512_mul_ps(depth, d.z))};
   W3 gn = load3w(t.gn);
-  W3 sn = gn;
-  if (t.has_n) {
-    const W3 n = {interpw(l0, l1, l2, _mm512_load_ps(t.n[0][0]), _mm512_load_ps(t.n[1][0]), _mm512_load_ps(t.n[2][0])),
-                  interpw(l0, l1, l2, _mm512_load_ps(t.n[0][1]), _mm512_load_ps(t.n[1][1]), _mm512_load_ps(t.n[2][1])),
-                  interpw(l0, l1, l2, _mm512_load_ps(t.n[0][2]), _mm512_load_ps(t.n[1][2]), _mm512_load_ps(t.n[2][2]))};
-    const __m512 nl = _mm512_maskz_sqrt_ps(0xFFFF, dotw(n, n));
-    const __mmask16 use = __mmask16(_mm512_cmp_ps_mask(nl, zero, _CMP_GT_OQ) & t.has_n);
-    sn = {_mm512_mask_blend_ps(use, sn.x, _mm512_div_ps(n.x, nl)),
-          _mm512_mask_blend_ps(use, sn.y, _mm512_div_ps(n.y, nl)),
-          _mm512_mask_blend_ps(use, sn.z, _mm512_div_ps(n.z, nl))};
-  }
   const W3 to_eye = {_mm512_sub_ps(bw(r.eye.x), pos.x), _mm512_sub_ps(bw(r.eye.y), pos.y),
                      _mm512_sub_ps(bw(r.eye.z), pos.z)};
   const __m512 sign = bw(-0.0f);
   const __mmask16 flip_g = _mm512_cmp_ps_mask(dotw(gn, to_eye), zero, _CMP_LT_OQ);
   gn = {_mm512_mask_xor_ps(gn.x, flip_g, gn.x, sign), _mm512_mask_xor_ps(gn.y, flip_g, gn.y, sign),
         _mm512_mask_xor_ps(gn.z, flip_g, gn.z, sign)};
-  const __mmask16 flip_s = _mm512_cmp_ps_mask(dotw(sn, gn), zero, _CMP_LT_OQ);
-  sn = {_mm512_mask_xor_ps(sn.x, flip_s, sn.x, sign), _mm512_mask_xor_ps(sn.y, flip_s, sn.y, sign),
-        _mm512_mask_xor_ps(sn.z, flip_s, sn.z, sign)};
   // Lanes showing no triangle: the empty values (+0 vectors, +inf depth, no ids).
   const __mmask16 cov = __mmask16(t.covered);
   store3w(position, {_mm512_maskz_mov_ps(cov, pos.x), _mm512_maskz_mov_ps(cov, pos.y),
                      _mm512_maskz_mov_ps(cov, pos.z)});
-  store3w(normal, {_mm512_maskz_mov_ps(cov, sn.x), _mm512_maskz_mov_ps(cov, sn.y),
-                   _mm512_maskz_mov_ps(cov, sn.z)});
   store3w(geo_normal, {_mm512_maskz_mov_ps(cov, gn.x), _mm512_maskz_mov_ps(cov, gn.y),
                        _mm512_maskz_mov_ps(cov, gn.z)});
   _mm512_storeu_ps(depth_out, _mm512_mask_blend_ps(cov, bw(__builtin_inff()), depth));
@@ -286,19 +201,6 @@ SL_AVX512 void resolve_lanes16_avx512(const ResolveRun8& r, const ResolveLanes16
   _mm512_storeu_si512(prim_id, _mm512_mask_blend_epi32(cov, none, _mm512_load_si512(t.prim)));
   _mm_storeu_si128(reinterpret_cast<__m128i*>(covered),
                    _mm512_maskz_cvtepi32_epi8(0xFFFF, _mm512_maskz_mov_epi32(cov, _mm512_set1_epi32(1))));
-  if (t.has_uv & t.covered) {
-    alignas(64) float tu[16], tv[16];
-    const __mmask16 has = __mmask16(t.has_uv & t.covered);
-    _mm512_store_ps(tu, _mm512_maskz_mov_ps(has, interpw(l0, l1, l2, _mm512_load_ps(t.uv[0][0]),
-                                                           _mm512_load_ps(t.uv[1][0]),
-                                                           _mm512_load_ps(t.uv[2][0]))));
-    _mm512_store_ps(tv, _mm512_maskz_mov_ps(has, interpw(l0, l1, l2, _mm512_load_ps(t.uv[0][1]),
-                                                           _mm512_load_ps(t.uv[1][1]),
-                                                           _mm512_load_ps(t.uv[2][1]))));
-    for (int i = 0; i < 16; ++i) uv[i] = vec2(tu[i], tv[i]);
-  } else {
-    for (int i = 0; i < 16; ++i) uv[i] = vec2(0.0f);
-  }
 }
 
 SL_AVX512 inline void put3(float (*dst)[16], __mmask16 m, const vec3& v) {
@@ -316,33 +218,15 @@ SL_AVX512 uint32_t resolve_lanes16_runs(const uint32_t* ids, uint32_t* covered) 
 }
 
 SL_AVX512 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1,
-                                    const vec3& e2, const vec3& s, const vec3& q, const vec3& gn,
-                                    float e2q, const vec3* const* n, const vec2* const* uv,
-                                    uint32_t mesh, uint32_t prim) {
+                                    const vec3& e2, const vec3& gn, float e2q, uint32_t mesh,
+                                    uint32_t prim) {
   const __mmask16 m = __mmask16(mask);
   _mm512_mask_storeu_epi32(l.mesh, m, _mm512_set1_epi32(int(mesh)));
   _mm512_mask_storeu_epi32(l.prim, m, _mm512_set1_epi32(int(prim)));
   put3(l.e1, m, e1);
   put3(l.e2, m, e2);
-  put3(l.s, m, s);
-  put3(l.q, m, q);
   put3(l.gn, m, gn);
   _mm512_mask_storeu_ps(l.e2q, m, bw(e2q));
-  if (n) {
-    for (int k = 0; k < 3; ++k) put3(l.n[k], m, *n[k]);
-    l.has_n |= mask;
-  } else {
-    l.has_n &= ~mask;
-  }
-  if (uv) {
-    for (int k = 0; k < 3; ++k) {
-      _mm512_mask_storeu_ps(l.uv[k][0], m, bw(uv[k]->x));
-      _mm512_mask_storeu_ps(l.uv[k][1], m, bw(uv[k]->y));
-    }
-    l.has_uv |= mask;
-  } else {
-    l.has_uv &= ~mask;
-  }
 }
 
 namespace {
@@ -363,8 +247,7 @@ uint32_t resolve_lanes16_runs(const uint32_t*, uint32_t* covered) {
   *covered = 0;
   return 0;
 }
-void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, const vec3&,
-                          const vec3&, const vec3&, float, const vec3* const*, const vec2* const*,
+void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, const vec3&, float,
                           uint32_t, uint32_t) {}
 #endif
 

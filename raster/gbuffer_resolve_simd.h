@@ -2,7 +2,8 @@
 // AVX2 paths of the GBuffer resolve for 8 neighbouring pixels of one row: all showing the same
 // triangle (two thirds of the 8-pixel runs on room100k at 1024×768), or each its own. It performs the scalar
 // resolve's IEEE operations in the same order (gbuffer_pass.cpp is its oracle), so the GBuffer
-// is bit-identical either way; a test compares both.
+// is bit-identical either way; a test compares both. The resolve writes position, geometric
+// normal and depth; the shading normal and uv are deferred (core/gbuffer_shading.h).
 #include <cstdint>
 
 #include "core/math.h"
@@ -15,64 +16,54 @@ struct ResolveRun8 {
   vec3 eye, forward, right, up;
   float sx, sy;
   int width, height;
-  // Triangle: Möller–Trumbore terms (e1, e2, s = eye − p0, q = s × e1, e2·q), unit normal.
-  vec3 e1, e2, s, q, gn;
+  // Triangle: Möller–Trumbore terms (e1, e2 and e2·q, with s = eye − p0 and q = s × e1), unit
+  // normal. The barycentric terms (s, q) are not needed: the resolve writes no interpolated
+  // attribute.
+  vec3 e1, e2, gn;
   float e2q;
-  const vec3* n[3];   // vertex normals (nullptr: the mesh has none)
-  const vec2* uv[3];  // vertex uvs (nullptr: the mesh has none)
 };
 
 // Resolves pixels x .. x+7 of row y: reads 8 values of 1/w, writes 8 entries of each output.
 using ResolveRun8Fn = void (*)(const ResolveRun8& r, int x, int y, const float* inv_w,
-                               vec3* position, vec3* normal, vec3* geo_normal, vec2* uv,
-                               float* depth);
+                               vec3* position, vec3* geo_normal, float* depth);
 
 // The AVX2 path, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
 ResolveRun8Fn resolve_run8_simd();
 
 // 8 neighbouring pixels of one row that show different triangles: each lane its own
-// triangle's terms (ResolveRun8's, structure of arrays: [component][lane]); lanes whose mesh
-// has no normals (uvs) get the geometric normal (uv 0) as the scalar resolve does. Lanes
-// showing no triangle may hold anything: the caller writes their empty values.
+// triangle's terms (ResolveRun8's, structure of arrays: [component][lane]). Lanes showing no
+// triangle may hold anything: the caller writes their empty values.
 struct ResolveLanes8 {
-  alignas(32) float e1[3][8], e2[3][8], s[3][8], q[3][8], gn[3][8], e2q[8];
-  alignas(32) float n[3][3][8];   // vertex k's normal, component c, lane
-  alignas(32) float uv[3][2][8];  // vertex k's uv
-  alignas(32) int32_t has_n[8], has_uv[8];  // -1 where the lane's mesh has them, else 0
+  alignas(32) float e1[3][8], e2[3][8], gn[3][8], e2q[8];
 };
 // The camera fields of `camera` (its triangle fields unused) and the lanes' triangles.
 using ResolveLanes8Fn = void (*)(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
-                                 int y, const float* inv_w, vec3* position, vec3* normal,
-                                 vec3* geo_normal, vec2* uv, float* depth);
+                                 int y, const float* inv_w, vec3* position, vec3* geo_normal,
+                                 float* depth);
 ResolveLanes8Fn resolve_lanes8_simd();
 
 // 16 neighbouring pixels in AVX-512, each lane its own triangle as in ResolveLanes8 (runs of
-// one triangle are filled with one masked store per term); has_n and has_uv are lane bits.
+// one triangle are filled with one masked store per term).
 struct ResolveLanes16 {
-  alignas(64) float e1[3][16], e2[3][16], s[3][16], q[3][16], gn[3][16], e2q[16];
-  alignas(64) float n[3][3][16];   // vertex k's normal, component c, lane
-  alignas(64) float uv[3][2][16];  // vertex k's uv
+  alignas(64) float e1[3][16], e2[3][16], gn[3][16], e2q[16];
   alignas(64) uint32_t mesh[16], prim[16];  // the lane's mesh and triangle index in it
-  uint32_t has_n = 0, has_uv = 0;  // bit k: lane k's mesh has normals (uvs)
-  uint32_t covered = 0;            // bit k: lane k shows a triangle (else its empty values)
+  uint32_t covered = 0;  // bit k: lane k shows a triangle (else its empty values)
 };
-// Writes all 16 pixels' layers: the covered lanes' resolve, the others' empty values (position,
-// normals and uv 0, depth +inf, ids kNoPrimitive, covered 0), as the scalar resolve does.
+// Writes all 16 pixels' layers: the covered lanes' resolve, the others' empty values (position
+// and normal 0, depth +inf, ids kNoPrimitive, covered 0), as the scalar resolve does.
 using ResolveLanes16Fn = void (*)(const ResolveRun8& camera, const ResolveLanes16& lanes, int x,
-                                  int y, const float* inv_w, vec3* position, vec3* normal,
-                                  vec3* geo_normal, vec2* uv, float* depth, uint32_t* mesh_id,
-                                  uint32_t* prim_id, uint8_t* covered);
+                                  int y, const float* inv_w, vec3* position, vec3* geo_normal,
+                                  float* depth, uint32_t* mesh_id, uint32_t* prim_id,
+                                  uint8_t* covered);
 // The AVX-512 path (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced.
 ResolveLanes16Fn resolve_lanes16_simd();
 // The first pixels of the runs of equal ids among ids[0 .. 15] (bit k: ids[k] != ids[k − 1];
 // bit 0 always set), and in *covered the pixels that show a triangle (ids[k] != kNoPrimitive).
 // Only with the path above.
 uint32_t resolve_lanes16_runs(const uint32_t* ids, uint32_t* covered);
-// Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term (n, uv:
-// the vertices' normals and uvs, nullptr where the mesh has none). Only with the path above.
+// Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term. Only
+// with the path above.
 void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1, const vec3& e2,
-                          const vec3& s, const vec3& q, const vec3& gn, float e2q,
-                          const vec3* const* n, const vec2* const* uv, uint32_t mesh,
-                          uint32_t prim);
+                          const vec3& gn, float e2q, uint32_t mesh, uint32_t prim);
 
 }  // namespace shadowlab

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/gbuffer_shading.h"
 #include "core/parallel.h"
 
 namespace shadowlab {
@@ -24,7 +25,7 @@ ImageF shade_projector(const Scene& scene, const GBuffer& g, const ImageF& visib
       const float vis = visibility.data[i];
       if (vis > 0.0f) {
         const vec3 to_light = proj.position - g.position[i];
-        const float ndl = std::max(0.0f, glm::dot(g.normal[i], glm::normalize(to_light)));
+        const float ndl = std::max(0.0f, glm::dot(shading_attributes(scene, g, i).normal, glm::normalize(to_light)));
         c += projector_light(proj, frame, g.position[i]) * albedo * (ndl * vis);
       }
       for (int k = 0; k < 3; ++k) planes[k][i] = c[k];

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/gbuffer_shading.h"
 #include "core/parallel.h"
 #include "core/texture.h"
 #include "techniques/projector_shading.h"
@@ -24,12 +25,13 @@ ImageF shade_scene(const Scene& scene, const GBuffer& g, const ImageF& visibilit
       if (!g.covered[i]) continue;
       const Mesh& mesh = scene.meshes[g.mesh_id[i]];
       const Material& mat = scene.materials[size_t(mesh.material)];
+      const ShadingAttributes a = shading_attributes(scene, g, i);
       const vec3 albedo = mat.color_texture >= 0 && !mesh.uvs.empty()
-                              ? mat.color_factor * sample_rgb(scene.textures[size_t(mat.color_texture)], g.uv[i])
+                              ? mat.color_factor * sample_rgb(scene.textures[size_t(mat.color_texture)], a.uv)
                               : mat.albedo;
       const vec3 to_light = light - g.position[i];
       const float len = glm::length(to_light);
-      const float ndl = len > 0.0f ? std::max(0.0f, glm::dot(g.normal[i], to_light / len)) : 0.0f;
+      const float ndl = len > 0.0f ? std::max(0.0f, glm::dot(a.normal, to_light / len)) : 0.0f;
       const vec3 c = albedo * (ambient + ndl * visibility.data[i]);
       for (int k = 0; k < 3; ++k) planes[k][i] = c[k];
     }
