@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace shadowlab {
 
@@ -44,6 +45,21 @@ ShadingAttributes shading_attributes(const Scene& scene, const GBuffer& g, size_
     out.uv = vec2(l.x * dvec2(mesh.uvs[idx[0]]) + l.y * dvec2(mesh.uvs[idx[1]]) +
                   l.z * dvec2(mesh.uvs[idx[2]]));
   return out;
+}
+
+void fill_shading_attributes(const Scene& scene, GBuffer& g) {
+  if (g.has_shading_attributes()) return;
+  std::vector<vec3> normal(g.pixel_count());
+  std::vector<vec2> uv(g.pixel_count());
+  parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const ShadingAttributes a = shading_attributes(scene, g, i);
+      normal[i] = a.normal;
+      uv[i] = a.uv;
+    }
+  });
+  g.normal = std::move(normal);
+  g.uv = std::move(uv);
 }
 
 }  // namespace shadowlab

@@ -28,4 +28,9 @@ dvec3 barycentric_of_point(const vec3& p, const vec3& a, const vec3& b, const ve
 // normals or they sum to zero); the vertex uvs interpolated. Zero for an uncovered pixel.
 ShadingAttributes shading_attributes(const Scene& scene, const GBuffer& g, size_t i);
 
+// Stores every pixel's attributes in g.normal and g.uv (no-op when it has them), for a caller
+// that shades one GBuffer several times (a sweep's rows): computed once, not once per picture.
+// `scene` must be the one g was rendered from.
+void fill_shading_attributes(const Scene& scene, GBuffer& g);
+
 }  // namespace shadowlab

@@ -9,6 +9,7 @@
 
 #include "scenes/bunny_scene.h"
 #include "core/error.h"
+#include "core/gbuffer_shading.h"
 #include "core/image_io.h"
 #include "scenes/mesh_lod.h"
 #include "core/output_file.h"
@@ -71,6 +72,7 @@ MaskingResult run_lod_masking(const Scene& base, const MaskingConfig& c) {
                                                       &level.from_cache, "--levels");
     level.triangles = scene.meshes[kBunnyMesh].triangle_count();
     level.camera_ms = median_ms(c.repeats, [&] { render_gbuffer(scene, g); });
+    fill_shading_attributes(scene, g);  // for every slide's picture (untimed)
     std::vector<double> shadow_ms;
     for (size_t k = 0; k < slides.size(); ++k) {
       Projector p = base.projector;

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/gbuffer_shading.h"
 #include "core/output_file.h"
 #include "core/timer.h"
 #include "experiments/step_progress.h"
@@ -79,6 +80,9 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.provenance = provenance_json({&scene}, config.spp, config.repeats);
   GBuffer g;
   out.camera_ms = median_ms(config.repeats, [&] { render_gbuffer(scene, g); });
+  // The shaded images' normals and uvs, once for every row (untimed: only the pictures need
+  // them, core/gbuffer_shading.h).
+  fill_shading_attributes(scene, g);
   MetricWeights weights;
   weights.target_fps = config.target_fps;
   MetricScratch scratch;  // one set of metric buffers for every row

@@ -57,6 +57,17 @@ TEST(GBufferShadingPass, AffineVertexAttributesGiveTheirClosedForm) {
   // Measured: normal 2.4e-6, uv 8.8e-6 (float positions; uv up to ~15 in magnitude).
   EXPECT_LT(worst_n, 6e-6);
   EXPECT_LT(worst_uv, 2.5e-5);
+  // Stored once for a sweep's pictures: the same values, read back from the GBuffer.
+  GBuffer filled = g;
+  fill_shading_attributes(scene, filled);
+  ASSERT_TRUE(filled.has_shading_attributes());
+  size_t differ = 0;
+  for (size_t i = 0; i < g.pixel_count(); ++i) {
+    const ShadingAttributes a = shading_attributes(scene, g, i);
+    const ShadingAttributes b = shading_attributes(scene, filled, i);
+    differ += a.normal != b.normal || a.uv != b.uv;
+  }
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace
