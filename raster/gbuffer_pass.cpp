@@ -33,15 +33,10 @@ struct PixelRays {
   }
 };
 
-// Lane k of the mixed-triangle SIMD resolve: the triangle's terms.
-void fill_lane(ResolveLanes8& l, int k, const vec3& e1, const vec3& e2, const vec3& gn,
-               float e2q) {
-  for (int c = 0; c < 3; ++c) {
-    l.e1[c][k] = e1[c];
-    l.e2[c][k] = e2[c];
-    l.gn[c][k] = gn[c];
-  }
-  l.e2q[k] = e2q;
+// Lane k of the mixed-triangle SIMD resolve: the triangle's vertices.
+void fill_lane(ResolveLanes8& l, int k, const vec3* v) {
+  for (int j = 0; j < 3; ++j)
+    for (int c = 0; c < 3; ++c) l.v[j][c][k] = v[j][c];
 }
 
 }  // namespace
@@ -86,6 +81,8 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     uint32_t m = 0;
     struct {
       uint32_t t = kNoPrimitive, m = 0, p = 0;
+      vec3 v[3]{vec3(0.0f), vec3(0.0f), vec3(0.0f)};
+      bool has_terms = false;  // e1 .. e2q computed for v
       vec3 e1{0.0f}, e2{0.0f}, gn{0.0f};
       float e2q = 0.0f;
     } tri;
@@ -94,7 +91,8 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     // The chunk is one block row: its bounds are accumulated row by row below.
     BlockRowBounds bounds;
     bounds.reset(g.blocks_x());
-    // Neighbouring pixels mostly see the same triangle: its per-triangle terms are kept.
+    // Neighbouring pixels mostly see the same triangle: its vertices are kept, and its terms
+    // once computed (the mixed 8-pixel groups compute them in the kernel instead).
     auto load_triangle = [&](uint32_t t) {
       if (t == tri.t) return;
       if (t < first[m] || t >= first[m + 1])
@@ -104,9 +102,16 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
       const Mesh& mesh = scene.meshes[m];
       tri.p = t - first[m];
       const uint32_t* idx = &mesh.indices[3 * size_t(tri.p)];
-      const vec3& p0 = mesh.positions[idx[0]];
-      tri.e1 = mesh.positions[idx[1]] - p0;
-      tri.e2 = mesh.positions[idx[2]] - p0;
+      for (int j = 0; j < 3; ++j) tri.v[j] = mesh.positions[idx[j]];
+      tri.has_terms = false;
+    };
+    // The loaded triangle's terms (resolve_lanes8's LaneTriangles repeats these operations).
+    auto triangle_terms = [&] {
+      if (tri.has_terms) return;
+      tri.has_terms = true;
+      const vec3& p0 = tri.v[0];
+      tri.e1 = tri.v[1] - p0;
+      tri.e2 = tri.v[2] - p0;
       // Möller–Trumbore's e2·q with s = eye − p0 and q = s × e1: the ray parameter's numerator.
       tri.e2q = glm::dot(tri.e2, glm::cross(rays.eye - p0, tri.e1));
       const vec3 n = glm::cross(tri.e1, tri.e2);
@@ -154,6 +159,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             const uint32_t tk = ids[k];
             if (tk != kNoPrimitive) {
               load_triangle(tk);
+              triangle_terms();
               const uint32_t run_mask = ((1u << k1) - 1u) & ~((1u << k) - 1u);
               resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.gn, tri.e2q, tri.m,
                                    tri.p);
@@ -180,11 +186,11 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             for (int k = 0; k < 8; ++k) {
               const uint32_t tk = vis.ids[i + size_t(k)];
               if (tk == kNoPrimitive) {
-                fill_lane(lanes, k, tri.e1, tri.e2, tri.gn, 0.0f);
+                fill_lane(lanes, k, tri.v);  // any finite values: overwritten below
                 continue;
               }
               load_triangle(tk);
-              fill_lane(lanes, k, tri.e1, tri.e2, tri.gn, tri.e2q);
+              fill_lane(lanes, k, tri.v);
               g.mesh_id[i + size_t(k)] = tri.m;
               g.prim_id[i + size_t(k)] = tri.p;
               g.covered[i + size_t(k)] = 1;
@@ -203,6 +209,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           // Eight pixels on the cached triangle: the AVX2 path, same bits as the code below.
           if (run_t != t) {
             run_t = t;
+            triangle_terms();
             run.e1 = tri.e1;
             run.e2 = tri.e2;
             run.gn = tri.gn;
@@ -222,6 +229,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           continue;
         }
         load_triangle(t);
+        triangle_terms();
         const vec3 d = rays.dir(x, int(y));
         // Möller–Trumbore's ray parameter without the inside test (the rasterizer decided
         // coverage); the terms that do not depend on the ray come from the triangle cache.

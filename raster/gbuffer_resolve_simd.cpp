@@ -62,13 +62,31 @@ struct SameTriangle {
   SL_AVX2 __m256 e2q() const { return bc(r.e2q); }
 };
 
-// Each lane's own triangle (loads).
+SL_AVX2 inline V3 sub3(const V3& a, const V3& b) {
+  return {_mm256_sub_ps(a.x, b.x), _mm256_sub_ps(a.y, b.y), _mm256_sub_ps(a.z, b.z)};
+}
+
+// Each lane's own triangle: the terms load_triangle (gbuffer_pass.cpp) computes, from the
+// lanes' vertices with its operations in its order (glm's -, cross, dot, length and /).
 struct LaneTriangles {
-  const ResolveLanes8& l;
-  SL_AVX2 V3 e1() const { return load3(l.e1); }
-  SL_AVX2 V3 e2() const { return load3(l.e2); }
-  SL_AVX2 V3 gn() const { return load3(l.gn); }
-  SL_AVX2 __m256 e2q() const { return _mm256_load_ps(l.e2q); }
+  V3 e1_, e2_, gn_;
+  __m256 e2q_;
+  SL_AVX2 LaneTriangles(const ResolveLanes8& l, const vec3& eye) {
+    const V3 p0 = load3(l.v[0]);
+    e1_ = sub3(load3(l.v[1]), p0);
+    e2_ = sub3(load3(l.v[2]), p0);
+    e2q_ = dot(e2_, cross(sub3(bc3(eye), p0), e1_));
+    const V3 n = cross(e1_, e2_);
+    const __m256 nl = _mm256_sqrt_ps(dot(n, n));
+    const __m256 ok = _mm256_cmp_ps(nl, _mm256_setzero_ps(), _CMP_GT_OQ);
+    gn_ = {select(ok, _mm256_div_ps(n.x, nl), _mm256_setzero_ps()),
+           select(ok, _mm256_div_ps(n.y, nl), bc(1.0f)),
+           select(ok, _mm256_div_ps(n.z, nl), _mm256_setzero_ps())};
+  }
+  SL_AVX2 V3 e1() const { return e1_; }
+  SL_AVX2 V3 e2() const { return e2_; }
+  SL_AVX2 V3 gn() const { return gn_; }
+  SL_AVX2 __m256 e2q() const { return e2q_; }
 };
 
 // The scalar resolve's operations for 8 pixels (gbuffer_pass.cpp), triangle terms from `t`.
@@ -119,7 +137,8 @@ SL_AVX2 void resolve_run8_avx2(const ResolveRun8& r, int x, int y, const float* 
 SL_AVX2 void resolve_lanes8_avx2(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
                                  int y, const float* inv_w, vec3* position, vec3* geo_normal,
                                  float* depth_out) {
-  resolve8(camera, LaneTriangles{lanes}, x, y, inv_w, position, geo_normal, depth_out);
+  resolve8(camera, LaneTriangles(lanes, camera.eye), x, y, inv_w, position, geo_normal,
+           depth_out);
 }
 
 #undef SL_AVX2

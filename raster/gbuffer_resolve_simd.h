@@ -31,10 +31,12 @@ using ResolveRun8Fn = void (*)(const ResolveRun8& r, int x, int y, const float* 
 ResolveRun8Fn resolve_run8_simd();
 
 // 8 neighbouring pixels of one row that show different triangles: each lane its own
-// triangle's terms (ResolveRun8's, structure of arrays: [component][lane]). Lanes showing no
-// triangle may hold anything: the caller writes their empty values.
+// triangle's vertices (structure of arrays: [vertex][component][lane]), from which the kernel
+// derives ResolveRun8's terms with the scalar resolve's operations, 8 triangles at a time (a
+// scalar triangle load was dominated by the normal's square root and division). Lanes showing
+// no triangle may hold anything finite: the caller writes their empty values.
 struct ResolveLanes8 {
-  alignas(32) float e1[3][8], e2[3][8], gn[3][8], e2q[8];
+  alignas(32) float v[3][3][8];
 };
 // The camera fields of `camera` (its triangle fields unused) and the lanes' triangles.
 using ResolveLanes8Fn = void (*)(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
