@@ -171,16 +171,22 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           x += 15;
           continue;
         }
+        bool run8 = false;  // the 8 pixels from x show one triangle
         if (lanes8 && x + 8 <= w) {
-          int covered = 0;
-          for (int k = 0; k < 8; ++k) covered += vis.ids[i + size_t(k)] != kNoPrimitive;
+          // The group's kind without a branch per pixel (loops with early exits were
+          // mispredicted on the mixed groups): bit k for pixel x + k.
+          const uint32_t* ids = &vis.ids[i];
+          unsigned covered = 0, same = 0;
+          for (int k = 0; k < 8; ++k) {
+            covered |= unsigned(ids[k] != kNoPrimitive) << k;
+            same |= unsigned(ids[k] == t) << k;
+          }
           if (covered == 0) {
             for (int k = 0; k < 8; ++k) empty_pixel(i + size_t(k));
             x += 7;
             continue;
           }
-          if (covered < 8 || !std::all_of(&vis.ids[i + 1], &vis.ids[i + 8],
-                                          [t](uint32_t o) { return o == t; })) {
+          if ((covered & same) != 0xFFu) {
             // Eight pixels not all on one triangle: each lane its own triangle's terms, the
             // AVX2 path for all 8 (same bits as the code below), then the empty lanes' values.
             for (int k = 0; k < 8; ++k) {
@@ -197,15 +203,17 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
             }
             lanes8(run, lanes, x, int(y), &vis.inv_w[i], &g.position[i], &g.geo_normal[i],
                    &g.depth[i]);
-            for (int k = 0; k < 8; ++k)
-              if (vis.ids[i + size_t(k)] == kNoPrimitive) empty_pixel(i + size_t(k));
+            for (unsigned e = ~covered & 0xFFu; e != 0; e &= e - 1u)
+              empty_pixel(i + size_t(__builtin_ctz(e)));
             x += 7;
             continue;
           }
           load_triangle(t);  // eight pixels on one triangle: the run below
+          run8 = true;
         }
-        if (simd && t != kNoPrimitive && x + 8 <= w && t == tri.t &&
-            std::all_of(&vis.ids[i + 1], &vis.ids[i + 8], [t](uint32_t o) { return o == t; })) {
+        if (simd && t != kNoPrimitive && x + 8 <= w &&
+            (run8 || (t == tri.t && std::all_of(&vis.ids[i + 1], &vis.ids[i + 8],
+                                                [t](uint32_t o) { return o == t; })))) {
           // Eight pixels on the cached triangle: the AVX2 path, same bits as the code below.
           if (run_t != t) {
             run_t = t;
