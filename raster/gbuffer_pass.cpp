@@ -26,10 +26,14 @@ struct PixelRays {
     sy = std::tan(glm::radians(c.fov_y_deg) * 0.5f);
     sx = sy * float(c.width) / float(c.height);
   }
-  vec3 dir(int x, int y) const {
+  // forward + (nx·sx)·right: the column's part of dir, glm's first sum.
+  vec3 column(int x) const {
     const float nx = (float(x) + 0.5f) / float(width) * 2.0f - 1.0f;
+    return forward + (nx * sx) * right;
+  }
+  vec3 dir(int x, int y) const {
     const float ny = 1.0f - (float(y) + 0.5f) / float(height) * 2.0f;
-    return forward + (nx * sx) * right + (ny * sy) * up;
+    return column(x) + (ny * sy) * up;
   }
 };
 
@@ -74,6 +78,12 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
   const ResolveLanes8Fn lanes8 = allow_simd ? resolve_lanes8_simd() : nullptr;
   const ResolveLanes16Fn lanes16 = allow_simd ? resolve_lanes16_simd() : nullptr;
+  // Every column's part of the ray direction, for the AVX2 paths (ResolveRun8::columns).
+  std::vector<float> columns(3 * size_t(w));
+  for (int x = 0; x < w; ++x) {
+    const vec3 c = rays.column(x);
+    for (int k = 0; k < 3; ++k) columns[size_t(k) * size_t(w) + size_t(x)] = c[k];
+  }
   // Chunks of one block row each: a chunk also leaves the position bounds of its blocks
   // (GBuffer::block_bounds), from the positions while they are in registers.
   g.block_bounds.assign(size_t(g.blocks_x()) * size_t(g.blocks_y()), BlockBounds{});
@@ -127,6 +137,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
     run.sy = rays.sy;
     run.width = rays.width;
     run.height = rays.height;
+    run.columns = columns.data();
     auto empty_pixel = [&](size_t i) {
       g.position[i] = vec3(0.0f);
       g.geo_normal[i] = vec3(0.0f);

@@ -95,26 +95,27 @@ SL_AVX2 inline void resolve8(const ResolveRun8& r, const Terms& t, int x, int y,
                              const float* inv_w, vec3* position, vec3* geo_normal,
                              float* depth_out) {
   const __m256 zero = _mm256_setzero_ps(), one = bc(1.0f), sign = bc(-0.0f);
-  // Ray directions, as PixelRays::dir.
-  const __m256 xs = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x),
-                                                        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-  const __m256 nx = _mm256_sub_ps(
-      _mm256_mul_ps(_mm256_div_ps(_mm256_add_ps(xs, bc(0.5f)), bc(float(r.width))), bc(2.0f)), one);
+  // Ray directions, as PixelRays::dir: the columns' forward + (nx·sx)·right from the table
+  // (its division per pixel made once per pass), plus the row's (ny·sy)·up.
   const float nys = (1.0f - (float(y) + 0.5f) / float(r.height) * 2.0f) * r.sy;
-  const __m256 nxs = _mm256_mul_ps(nx, bc(r.sx));
-  const V3 d = {_mm256_add_ps(_mm256_add_ps(bc(r.forward.x), _mm256_mul_ps(nxs, bc(r.right.x))), bc(nys * r.up.x)),
-                _mm256_add_ps(_mm256_add_ps(bc(r.forward.y), _mm256_mul_ps(nxs, bc(r.right.y))), bc(nys * r.up.y)),
-                _mm256_add_ps(_mm256_add_ps(bc(r.forward.z), _mm256_mul_ps(nxs, bc(r.right.z))), bc(nys * r.up.z))};
+  const float* col = r.columns + x;
+  const size_t w = size_t(r.width);
+  const V3 d = {_mm256_add_ps(_mm256_loadu_ps(col), bc(nys * r.up.x)),
+                _mm256_add_ps(_mm256_loadu_ps(col + w), bc(nys * r.up.y)),
+                _mm256_add_ps(_mm256_loadu_ps(col + 2 * w), bc(nys * r.up.z))};
   // Möller–Trumbore with the triangle's constant terms.
   const V3 pv = cross(d, t.e2());
   const __m256 det = dot(t.e1(), pv);
-  __m256 depth = _mm256_div_ps(one, _mm256_loadu_ps(inv_w));
   const __m256 ok_det = _mm256_cmp_ps(_mm256_andnot_ps(sign, det), bc(1e-30f), _CMP_GT_OQ);
   const __m256 inv_det = _mm256_div_ps(one, det);
   const __m256 tt = _mm256_mul_ps(t.e2q(), inv_det);
   const __m256 finite = _mm256_cmp_ps(_mm256_andnot_ps(sign, tt), bc(__builtin_inff()), _CMP_LT_OQ);
   const __m256 hit = _mm256_and_ps(_mm256_and_ps(ok_det, finite), _mm256_cmp_ps(tt, zero, _CMP_GT_OQ));
-  depth = select(hit, tt, depth);
+  // The raster depth 1 / (1/w) only where the ray missed the plane (almost never: no division
+  // when every lane hit).
+  const __m256 depth = _mm256_movemask_ps(hit) == 0xFF
+                           ? tt
+                           : select(hit, tt, _mm256_div_ps(one, _mm256_loadu_ps(inv_w)));
   const V3 pos = {_mm256_add_ps(bc(r.eye.x), _mm256_mul_ps(depth, d.x)),
                   _mm256_add_ps(bc(r.eye.y), _mm256_mul_ps(depth, d.y)),
                   _mm256_add_ps(bc(r.eye.z), _mm256_mul_ps(depth, d.z))};

@@ -16,6 +16,9 @@ struct ResolveRun8 {
   vec3 eye, forward, right, up;
   float sx, sy;
   int width, height;
+  // forward + (nx·sx)·right of every column x, component c at columns[c·width + x] (the AVX2
+  // paths load it; the AVX-512 path computes it).
+  const float* columns = nullptr;
   // Triangle: Möller–Trumbore terms (e1, e2 and e2·q, with s = eye − p0 and q = s × e1), unit
   // normal. The barycentric terms (s, q) are not needed: the resolve writes no interpolated
   // attribute.
