@@ -19,45 +19,77 @@ double box_min(const dvec3& a, const dvec3& centre, const dvec3& half) {
   return glm::dot(a, centre) - glm::dot(glm::abs(a), half);
 }
 
+// A box [lo, hi] grown by `reach`, relative to the light: centre ± half, with the margin `eps`
+// that covers the per-pixel path's float rounding (positions, the offset point, p − L and the
+// dot products stay far below 1e-5 of the coordinates' magnitude).
+struct LightBox {
+  dvec3 centre, half;
+  double eps;
+  bool finite;
+  LightBox(const vec3& light, const vec3& lo, const vec3& hi, float reach) {
+    const dvec3 dlo(lo), dhi(hi), L(light);
+    centre = 0.5 * (dlo + dhi) - L;
+    half = 0.5 * (dhi - dlo) + dvec3(double(reach));
+    finite = std::isfinite(glm::dot(centre, centre)) && std::isfinite(glm::dot(half, half));
+    const double scale = std::max({std::fabs(dlo.x), std::fabs(dlo.y), std::fabs(dlo.z),
+                                   std::fabs(dhi.x), std::fabs(dhi.y), std::fabs(dhi.z)}) +
+                         std::max({std::fabs(L.x), std::fabs(L.y), std::fabs(L.z)}) +
+                         double(reach);
+    eps = 1e-5 * scale;
+  }
+  // a·d > 0 for every d in the box, by the margin (false for NaN).
+  bool above(const dvec3& a) const {
+    const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
+    return box_min(a, centre, half) > eps * a1;
+  }
+};
+
+// Face f's cone of directions from the light as half-spaces a·d >= 0 (face_of gives f strictly
+// inside them, and never f where one is strictly negative); the count of planes.
+int face_cone(const FaceLayout& layout, int f, dvec3* planes) {
+  const LightFace& face = layout.faces[size_t(f)];
+  const dvec3 fwd(face.forward), right(face.right), up(face.up);
+  switch (layout.kind) {
+    case FaceLayoutKind::Cube:
+      planes[0] = fwd + right;
+      planes[1] = fwd - right;
+      planes[2] = fwd + up;
+      planes[3] = fwd - up;
+      return 4;
+    case FaceLayoutKind::Tetrahedron: {
+      int n = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != f) planes[n++] = dvec3(kTetraNormals[f]) - dvec3(kTetraNormals[j]);
+      return n;
+    }
+    case FaceLayoutKind::DualParaboloid:
+      // The two faces look opposite ways (face 1's forward is −face 0's), and face_of gives 0
+      // where d·forward0 >= 0: each face's half-space is its own forward.
+      planes[0] = fwd;
+      return 1;
+    case FaceLayoutKind::Projector: return 0;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo, const vec3& hi,
                     float reach, int cross_pcf) {
   if (layout.kind == FaceLayoutKind::Projector) return -1;
-  const dvec3 dlo(lo), dhi(hi), L(light);
-  const dvec3 centre = 0.5 * (dlo + dhi) - L;
-  const dvec3 half = 0.5 * (dhi - dlo) + dvec3(double(reach));
-  if (!(std::isfinite(glm::dot(centre, centre)) && std::isfinite(glm::dot(half, half))))
-    return -1;
-  // Float rounding of the per-pixel path (positions, the offset point, p − L, the dot products)
-  // stays far below 1e-5 of the coordinates' magnitude.
-  const double scale = std::max({std::fabs(dlo.x), std::fabs(dlo.y), std::fabs(dlo.z),
-                                 std::fabs(dhi.x), std::fabs(dhi.y), std::fabs(dhi.z)}) +
-                       std::max({std::fabs(L.x), std::fabs(L.y), std::fabs(L.z)}) + double(reach);
-  const double eps = 1e-5 * scale;
-  auto holds = [&](const dvec3& a) {
-    const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
-    return box_min(a, centre, half) > eps * a1;  // false for NaN
-  };
+  const LightBox box(light, lo, hi, reach);
+  if (!box.finite) return -1;
+  const dvec3 &centre = box.centre;
+  auto holds = [&](const dvec3& a) { return box.above(a); };
   const vec3 c(centre);
   if (c == vec3(0.0f)) return -1;
   const int f = face_of(layout, c);
   const LightFace& face = layout.faces[size_t(f)];
   const dvec3 fwd(face.forward), right(face.right), up(face.up);
-  switch (layout.kind) {
-    case FaceLayoutKind::Cube:
-      if (!(holds(fwd + right) && holds(fwd - right) && holds(fwd + up) && holds(fwd - up)))
-        return -1;
-      break;
-    case FaceLayoutKind::Tetrahedron:
-      for (int j = 0; j < 4; ++j)
-        if (j != f && !holds(dvec3(kTetraNormals[f]) - dvec3(kTetraNormals[j]))) return -1;
-      break;
-    case FaceLayoutKind::DualParaboloid:
-      if (!holds(f == 0 ? fwd : -fwd)) return -1;
-      break;
-    case FaceLayoutKind::Projector: return -1;
-  }
+  dvec3 planes[4];
+  const int n = face_cone(layout, f, planes);
+  for (int k = 0; k < n; ++k)
+    if (!holds(planes[k])) return -1;
   if (cross_pcf > 1) {
     if (face.paraboloid) return -1;
     // pcf_taps_inside holds for texel coordinates st in [half + 1.5, size − pcf + half − 0.5]
@@ -76,6 +108,23 @@ int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo,
       return -1;
   }
   return f;
+}
+
+bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
+                      const vec3& hi, float reach, int cross_pcf, uint32_t faces) {
+  if (layout.kind == FaceLayoutKind::Projector || cross_pcf > 1) return false;
+  const LightBox box(light, lo, hi, reach);
+  if (!box.finite) return false;
+  for (size_t f = 0; f < layout.faces.size() && f < 32; ++f) {
+    if (!((faces >> f) & 1u)) continue;
+    // Outside the cone: some half-space's a·d < 0 over the whole box, i.e. (−a)·d > 0.
+    dvec3 planes[4];
+    const int n = face_cone(layout, int(f), planes);
+    bool outside = false;
+    for (int k = 0; k < n && !outside; ++k) outside = box.above(-planes[k]);
+    if (!outside) return false;
+  }
+  return true;
 }
 
 namespace {
@@ -109,6 +158,11 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
         const float reach = normal_offset_reach(p, plane_texel, box, light);
         const int face = box_single_face(layout, light, box.lo, box.hi, reach, cross ? p.pcf : 1);
         if (face >= 0 && ((f >> face) & 1u)) continue;
+        // A block across faces that are all known already (its box outside every other face's
+        // cone) needs no walk either: it can add no face.
+        if (face < 0 &&
+            box_misses_faces(layout, light, box.lo, box.hi, reach, cross ? p.pcf : 1, all & ~f))
+          continue;
         const int x0 = b * B, x1 = std::min(g.width, x0 + B);
         const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
         for (int y = y0; y < y1; ++y) {

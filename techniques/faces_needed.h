@@ -3,6 +3,7 @@
 // touches, so that only those are rendered. The answer is the exact set of faces of the
 // covered, light-facing pixels' lookups (and, for cross-face PCF, of their taps); every path
 // below gives that same set (README "The light-map pipeline").
+#include <cstdint>
 #include <vector>
 
 #include "core/gbuffer.h"
@@ -34,6 +35,14 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
 // a·centre − Σ|a_i|·half_i, so one test per half-space decides every point of the box.
 int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo, const vec3& hi,
                     float reach, int cross_pcf);
+
+// True when no point within `reach` metres of the box maps to a face in the bit set `faces`
+// (bit f: face f): the box lies outside each such face's cone by the margin box_single_face
+// uses. A box that straddles faces all known to be needed is then decided without a walk.
+// False for cross-face PCF (cross_pcf > 1: a footprint may reach any neighbour), for the
+// projector's layout and for a box that is not finite.
+bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
+                      const vec3& hi, float reach, int cross_pcf, uint32_t faces);
 
 // How far (metres) the normal offset may move a lookup point of the block's box: at most
 // normal × plane texel × distance (techniques/normal_offset.h), with 1 % more for its rounding;
