@@ -110,6 +110,21 @@ int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo,
   return f;
 }
 
+float pcf_tap_reach(const FaceLayout& layout, int pcf, const BlockBounds& box, const vec3& light,
+                    float reach) {
+  if (pcf <= 1) return 0.0f;
+  // The taps lie within (pcf − 1)/2 + 1.5 texels of the lookup point on each axis of its face
+  // (for_each_pcf_tap): directions of points within √2·((pcf − 1)/2 + 2) plane texels × the
+  // point's forward distance, at most its distance from the light, of it.
+  double plane_step = 0.0;
+  for (const LightFace& lf : layout.faces)
+    plane_step = std::max({plane_step, (double(lf.right_edge) - lf.left) / lf.width,
+                           (double(lf.top) - lf.bottom) / lf.height});
+  const vec3 far_corner = glm::max(glm::abs(box.lo - light), glm::abs(box.hi - light));
+  return float(1.01 * std::sqrt(2.0) * ((pcf - 1) / 2 + 2) * plane_step *
+               (double(glm::length(far_corner)) + reach));
+}
+
 bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
                       const vec3& hi, float reach, int cross_pcf, uint32_t faces) {
   if (layout.kind == FaceLayoutKind::Projector || cross_pcf > 1) return false;
@@ -158,11 +173,12 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
         const float reach = normal_offset_reach(p, plane_texel, box, light);
         const int face = box_single_face(layout, light, box.lo, box.hi, reach, cross ? p.pcf : 1);
         if (face >= 0 && ((f >> face) & 1u)) continue;
-        // A block across faces that are all known already (its box outside every other face's
-        // cone) needs no walk either: it can add no face.
-        if (face < 0 &&
-            box_misses_faces(layout, light, box.lo, box.hi, reach, cross ? p.pcf : 1, all & ~f))
-          continue;
+        // A block across faces that are all known already (its box, and with cross seams its
+        // taps' reach, outside every other face's cone) needs no walk either: it can add no face.
+        if (face < 0) {
+          const float grown = reach + (cross ? pcf_tap_reach(layout, p.pcf, box, light, reach) : 0.0f);
+          if (box_misses_faces(layout, light, box.lo, box.hi, grown, 1, all & ~f)) continue;
+        }
         const int x0 = b * B, x1 = std::min(g.width, x0 + B);
         const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
         for (int y = y0; y < y1; ++y) {

@@ -44,6 +44,13 @@ int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo,
 bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
                       const vec3& hi, float reach, int cross_pcf, uint32_t faces);
 
+// How far (metres) from a lookup point of the box, itself within `reach` of the box, the points
+// whose directions are those of its cross-seam PCF taps (pcf × pcf, for_each_pcf_tap) can lie:
+// the footprint's half-width in plane texels × the largest plane texel × the distance from the
+// light; 0 for pcf <= 1. A box grown by reach + this holds every tap's direction.
+float pcf_tap_reach(const FaceLayout& layout, int pcf, const BlockBounds& box, const vec3& light,
+                    float reach);
+
 // How far (metres) the normal offset may move a lookup point of the block's box: at most
 // normal × plane texel × distance (techniques/normal_offset.h), with 1 % more for its rounding;
 // 0 without normal offset.

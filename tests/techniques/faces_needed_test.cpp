@@ -160,6 +160,53 @@ TEST(FacesNeeded, EveryPointOfABoxThatMissesFacesMapsElsewhere) {
                                 vec3(5, 0, 0), 0.0f, 1, 1u));
 }
 
+// With cross seams a box grown by pcf_tap_reach holds its points' taps: when that grown box
+// misses a set of faces, no tap of any sampled point reads one of them (for_each_pcf_tap from
+// the point's face and texel coordinates). Coarse faces and wide footprints, so that taps reach
+// past their points' faces; both answers must occur. Without the growth it fails: boxes near a
+// boundary miss the set while their points' taps read it.
+TEST(FacesNeeded, TapsOfABoxGrownByTheTapReachMissItsFaces) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  auto in = [&](float a, float b) { return a + (b - a) * u01(rng); };
+  const struct { FaceLayout layout; int pcf; } cases[] = {
+      {cube_layout(32, 0), 5}, {cube_layout(16, 0), 3}, {tetra_layout(32, 0), 3}};
+  for (const auto& c : cases) {
+    const uint32_t all = (1u << c.layout.faces.size()) - 1u;
+    int misses = 0, others = 0, needed_growth = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      const vec3 light(in(-3, 3), in(-3, 3), in(-3, 3));
+      const vec3 centre = light + glm::normalize(vec3(in(-1, 1), in(-1, 1), in(-1, 1))) * in(0.5f, 6);
+      const vec3 half = vec3(in(0, 1), in(0, 1), in(0, 1)) * std::pow(10.0f, in(-3, -1));
+      BlockBounds box;
+      box.lo = centre - half;
+      box.hi = centre + half;
+      uint32_t set = uint32_t(rng()) & all;
+      set &= ~(1u << face_of(c.layout, centre - light));
+      if (set == 0) continue;
+      const float grown = pcf_tap_reach(c.layout, c.pcf, box, light, 0.0f);
+      if (!box_misses_faces(c.layout, light, box.lo, box.hi, grown, 1, set)) {
+        ++others;
+        continue;
+      }
+      ++misses;
+      for (int s = 0; s < 24; ++s) {
+        vec3 q;
+        for (int k = 0; k < 3; ++k)
+          q[k] = s < 8 ? centre[k] + (((s >> k) & 1) ? half[k] : -half[k]) : in(box.lo[k], box.hi[k]);
+        const vec3 d = q - light;
+        const int f = face_of(c.layout, d);
+        const vec2 st = face_texel_coords(c.layout.faces[size_t(f)], d);
+        for_each_pcf_tap(c.layout, f, st, c.pcf, [&](int ff, int, int, float) {
+          ASSERT_FALSE((set >> ff) & 1u) << "trial " << trial << " sample " << s;
+        });
+      }
+    }
+    EXPECT_GT(misses, 200);
+    EXPECT_GT(others, 200);
+  }
+}
+
 // A point box well inside a face is decided; a box around the light or across a face boundary
 // is not.
 TEST(FacesNeeded, BoxTestDecidesInteriorsOnly) {
@@ -195,7 +242,10 @@ TEST(FacesNeeded, BlockPathEqualsABruteForceWalk) {
       {"dsm:res=256", D, MapFilter::Depth},        {"cvsm:res=128", C, MapFilter::Variance},
       // Offsets of metres: lookup points cross face boundaries their receivers do not.
       {"csm:res=64,normal=6", C, MapFilter::Depth}, {"csm:res=128,normal=12", C, MapFilter::Depth},
-      {"csm:res=32,normal=5", C, MapFilter::Depth}, {"tsm:res=64,normal=6", T, MapFilter::Depth}};
+      {"csm:res=32,normal=5", C, MapFilter::Depth}, {"tsm:res=64,normal=6", T, MapFilter::Depth},
+      // Wide footprints on coarse faces: taps reach faces no lookup point lies in, so a block
+      // across known faces may still need another one through its taps.
+      {"csm:res=8,pcf=7", C, MapFilter::Depth},    {"tsm:res=8,pcf=5", T, MapFilter::Depth}};
   const vec3 offsets[] = {vec3(0.0f), vec3(0.0f, -1.2f, 0.0f), vec3(1.5f, -1.0f, 0.5f),
                           vec3(-2.0f, 0.5f, -1.0f), vec3(0.3f, -1.7f, -0.4f)};
   int partial = 0, cases = 0;
