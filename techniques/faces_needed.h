@@ -15,8 +15,9 @@ namespace shadowlab {
 
 // Faces the lookups of the covered, light-facing pixels touch. Without `looked_up` it first
 // walks a sparse sample of the pixels and stops there when that already needs every face; then,
-// when the GBuffer has block bounds, it decides whole 16×16 blocks from them (box_single_face)
-// and walks only the pixels of the blocks it cannot decide. With `looked_up`, every pixel is
+// when the GBuffer has block bounds, it decides whole 16×16 blocks from them (box_single_face;
+// box_misses_faces for a block across faces already known) and walks only the pixels of the
+// blocks it cannot decide. With `looked_up`, every pixel is
 // walked and `looked_up` receives the number of such pixels.
 std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout,
                                const MapParams& p, size_t* looked_up = nullptr);
