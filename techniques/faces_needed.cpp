@@ -79,9 +79,8 @@ int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo,
   if (layout.kind == FaceLayoutKind::Projector) return -1;
   const LightBox box(light, lo, hi, reach);
   if (!box.finite) return -1;
-  const dvec3 &centre = box.centre;
   auto holds = [&](const dvec3& a) { return box.above(a); };
-  const vec3 c(centre);
+  const vec3 c(box.centre);
   if (c == vec3(0.0f)) return -1;
   const int f = face_of(layout, c);
   const LightFace& face = layout.faces[size_t(f)];
@@ -126,8 +125,8 @@ float pcf_tap_reach(const FaceLayout& layout, int pcf, const BlockBounds& box, c
 }
 
 bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
-                      const vec3& hi, float reach, int cross_pcf, uint32_t faces) {
-  if (layout.kind == FaceLayoutKind::Projector || cross_pcf > 1) return false;
+                      const vec3& hi, float reach, uint32_t faces) {
+  if (layout.kind == FaceLayoutKind::Projector) return false;
   const LightBox box(light, lo, hi, reach);
   if (!box.finite) return false;
   for (size_t f = 0; f < layout.faces.size() && f < 32; ++f) {
@@ -177,7 +176,7 @@ std::vector<bool> faces_needed_by_blocks(const GBuffer& g, const FaceLayout& lay
         // taps' reach, outside every other face's cone) needs no walk either: it can add no face.
         if (face < 0) {
           const float grown = reach + (cross ? pcf_tap_reach(layout, p.pcf, box, light, reach) : 0.0f);
-          if (box_misses_faces(layout, light, box.lo, box.hi, grown, 1, all & ~f)) continue;
+          if (box_misses_faces(layout, light, box.lo, box.hi, grown, all & ~f)) continue;
         }
         const int x0 = b * B, x1 = std::min(g.width, x0 + B);
         const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);

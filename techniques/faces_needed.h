@@ -40,10 +40,10 @@ int box_single_face(const FaceLayout& layout, const vec3& light, const vec3& lo,
 // True when no point within `reach` metres of the box maps to a face in the bit set `faces`
 // (bit f: face f): the box lies outside each such face's cone by the margin box_single_face
 // uses. A box that straddles faces all known to be needed is then decided without a walk.
-// False for cross-face PCF (cross_pcf > 1: a footprint may reach any neighbour), for the
-// projector's layout and for a box that is not finite.
+// For cross-face PCF, grow `reach` by pcf_tap_reach so that the taps are held too. False for
+// the projector's layout and for a box that is not finite.
 bool box_misses_faces(const FaceLayout& layout, const vec3& light, const vec3& lo,
-                      const vec3& hi, float reach, int cross_pcf, uint32_t faces);
+                      const vec3& hi, float reach, uint32_t faces);
 
 // How far (metres) from a lookup point of the box, itself within `reach` of the box, the points
 // whose directions are those of its cross-seam PCF taps (pcf × pcf, for_each_pcf_tap) can lie:
