@@ -3,7 +3,9 @@
 # builds into ./build (Release). Idempotent: with everything installed it only runs an
 # incremental build. Usage: bash setup.sh [--tests]
 # --tests also installs what only the tests need: snakemake (about 145 Python packages, for the
-# workflow test of workflows/), so the main command's first run stays lean.
+# workflow test of workflows/) and libsimde-dev (headers only, for the emulated-SIMD test build
+# that runs the AVX-512 kernels on machines without AVX-512: README, "Testing the AVX-512
+# kernels on any machine"), so the main command's first run stays lean.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -11,7 +13,7 @@ packages=(cmake g++ make pkg-config libembree-dev libtbb-dev libglm-dev libopene
           libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev
           libcli11-dev libfmt-dev libtinygltf-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(snakemake)
+  packages+=(snakemake libsimde-dev)
 elif [ $# -gt 0 ]; then
   echo "setup.sh: unknown argument '$1' (usage: bash setup.sh [--tests])" >&2
   exit 2

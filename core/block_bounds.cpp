@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/cpu_features.h"
+#include "core/simd_target.h"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -21,7 +22,7 @@ int lane_component(int j, int k) { return (8 * j + k) % 3; }
 #if defined(__x86_64__)
 // A fully covered 16-pixel segment (48 floats at f) into the block's six vectors; returns true
 // when a float is NaN.
-__attribute__((target("avx2"))) bool add_full_segment_avx2(const float* f, float* lanes) {
+SL_TARGET("avx2") bool add_full_segment_avx2(const float* f, float* lanes) {
   __m256 lo[3], hi[3];
   __m256 nan = _mm256_setzero_ps();
   for (int j = 0; j < 3; ++j) {
@@ -45,7 +46,7 @@ __attribute__((target("avx2"))) bool add_full_segment_avx2(const float* f, float
 // Minimum (or maximum) over the lanes of v whose component is c, with the other lanes set to
 // `fill` (+inf for a minimum, −inf for a maximum).
 template <bool kMax>
-__attribute__((target("avx2"))) float fold_component(const float* v, int c, float fill) {
+SL_TARGET("avx2") float fold_component(const float* v, int c, float fill) {
   __m256 m = _mm256_set1_ps(fill);
   for (int j = 0; j < 3; ++j) {
     alignas(32) int32_t sel[8];

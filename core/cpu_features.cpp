@@ -5,8 +5,12 @@
 
 namespace shadowlab {
 
+// The emulated build (core/simd_target.h) runs every kernel through SIMDe's portable code, so
+// any CPU "has" the extensions there.
 bool cpu_has_avx2() {
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  return true;
+#elif defined(__x86_64__) || defined(__i386__)
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx2");
 #else
@@ -21,7 +25,9 @@ bool use_avx2_paths() {
 }
 
 bool cpu_has_avx512() {
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  return true;
+#elif defined(__x86_64__) || defined(__i386__)
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
          __builtin_cpu_supports("avx512dq");

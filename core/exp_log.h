@@ -9,6 +9,9 @@
 // double).
 #include <bit>
 #include <cstdint>
+
+#include "core/simd_target.h"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 
@@ -130,7 +133,7 @@ inline float exp_f(float x) {
 // exp_d of 4 and of 8 doubles with AVX2 and AVX-512 intrinsics: exp_d's operations in exp_d's
 // order, the table read by a gather (AVX2) or a two-register permute (AVX-512), so each lane
 // gets exp_d's bits (tests/core/exp_log_test.cpp), for kernels written with intrinsics.
-__attribute__((target("avx2"))) inline __m256d exp_d4(__m256d x) {
+SL_TARGET("avx2") inline __m256d exp_d4(__m256d x) {
   const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
   const __m256d t = _mm256_add_pd(_mm256_mul_pd(x, _mm256_set1_pd(23.083120654223414)), shifter);
   const __m256d n = _mm256_sub_pd(t, shifter);
@@ -149,7 +152,7 @@ __attribute__((target("avx2"))) inline __m256d exp_d4(__m256d x) {
   return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(s), q));
 }
 
-__attribute__((target("avx512f"))) inline __m512d exp_d8(__m512d x) {
+SL_TARGET("avx512f") inline __m512d exp_d8(__m512d x) {
   const __m512d shifter = _mm512_set1_pd(6755399441055744.0);
   const __m512d t = _mm512_add_pd(_mm512_mul_pd(x, _mm512_set1_pd(23.083120654223414)), shifter);
   const __m512d n = _mm512_sub_pd(t, shifter);
@@ -175,7 +178,7 @@ __attribute__((target("avx512f"))) inline __m512d exp_d8(__m512d x) {
 // exp_f of 8 floats (AVX2) and of 16 (AVX-512): exp_f's operations in exp_f's order, so each
 // lane gets exp_f's bits (tests/core/exp_log_test.cpp), for the EVSM filter's rows and the
 // ESM lookup's AVX2 batch.
-__attribute__((target("avx2"))) inline __m256 exp_f8(__m256 x) {
+SL_TARGET("avx2") inline __m256 exp_f8(__m256 x) {
   const __m256 shifter = _mm256_set1_ps(12582912.0f);
   const __m256 t = _mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504f)), shifter);
   const __m256 n = _mm256_sub_ps(t, shifter);
@@ -188,7 +191,7 @@ __attribute__((target("avx2"))) inline __m256 exp_f8(__m256 x) {
   return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(p), _mm256_slli_epi32(ni, 23)));
 }
 
-__attribute__((target("avx512f"))) inline __m512 exp_f16(__m512 x) {
+SL_TARGET("avx512f") inline __m512 exp_f16(__m512 x) {
   const __m512 shifter = _mm512_set1_ps(12582912.0f);
   const __m512 t = _mm512_add_ps(_mm512_mul_ps(x, _mm512_set1_ps(1.44269504f)), shifter);
   const __m512 n = _mm512_sub_ps(t, shifter);
@@ -205,7 +208,7 @@ __attribute__((target("avx512f"))) inline __m512 exp_f16(__m512 x) {
 
 // log_d of 4 and of 8 doubles, as exp_d4 and exp_d8 are to exp_d (tables by gathers, or by
 // two-register permutes).
-__attribute__((target("avx2"))) inline __m256d log_d4(__m256d x) {
+SL_TARGET("avx2") inline __m256d log_d4(__m256d x) {
   const __m256i bits = _mm256_castpd_si256(x);
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256i one_bits = _mm256_castpd_si256(one);
@@ -233,7 +236,7 @@ __attribute__((target("avx2"))) inline __m256d log_d4(__m256d x) {
   return _mm256_add_pd(a, _mm256_add_pd(ln_m, b));
 }
 
-__attribute__((target("avx512f"))) inline __m512d log_d8(__m512d x) {
+SL_TARGET("avx512f") inline __m512d log_d8(__m512d x) {
   const __m512i bits = _mm512_castpd_si512(x);
   const __m512i one_bits = _mm512_set1_epi64(0x3FF0000000000000LL);
   const __m512d m = _mm512_castsi512_pd(

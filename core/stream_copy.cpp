@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/cpu_features.h"
+#include "core/simd_target.h"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -27,7 +28,7 @@ size_t floats_to_line(const float* dst, size_t n) {
 }  // namespace
 
 // Head and tail (partial lines) by memcpy; the lines between, 16 floats per store.
-__attribute__((target("avx512f"))) void stream_copy_avx512(const float* src, size_t n,
+SL_TARGET("avx512f") void stream_copy_avx512(const float* src, size_t n,
                                                            float* dst) {
   const size_t head = floats_to_line(dst, n);
   std::memcpy(dst, src, head * sizeof(float));
@@ -37,7 +38,7 @@ __attribute__((target("avx512f"))) void stream_copy_avx512(const float* src, siz
 }
 
 // As the AVX-512 copy, a line as two 32-byte stores.
-__attribute__((target("avx2"))) void stream_copy_avx2(const float* src, size_t n, float* dst) {
+SL_TARGET("avx2") void stream_copy_avx2(const float* src, size_t n, float* dst) {
   const size_t head = floats_to_line(dst, n);
   std::memcpy(dst, src, head * sizeof(float));
   size_t i = head;

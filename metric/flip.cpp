@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
+#include "core/simd_target.h"
 
 namespace shadowlab {
 namespace {
@@ -58,7 +59,7 @@ Lanes lanes_here() {
 }
 
 #if defined(__x86_64__)
-__attribute__((target("avx512f,avx512dq"))) size_t power8(const double* x, const double* p,
+SL_TARGET("avx512f,avx512dq") size_t power8(const double* x, const double* p,
                                                           double p0, size_t n, double* out) {
   size_t i = 0;
   const __m512d tiny = _mm512_set1_pd(0x1p-1000), zero = _mm512_setzero_pd(),
@@ -73,7 +74,7 @@ __attribute__((target("avx512f,avx512dq"))) size_t power8(const double* x, const
   return i;
 }
 
-__attribute__((target("avx2"))) size_t power4(const double* x, const double* p, double p0, size_t n,
+SL_TARGET("avx2") size_t power4(const double* x, const double* p, double p0, size_t n,
                                               double* out) {
   size_t i = 0;
   const __m256d tiny = _mm256_set1_pd(0x1p-1000), zero = _mm256_setzero_pd(),

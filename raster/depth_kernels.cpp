@@ -8,6 +8,7 @@
 #endif
 
 #include "core/cpu_features.h"
+#include "core/simd_target.h"
 #include "raster/setup.h"
 
 namespace shadowlab {
@@ -59,8 +60,8 @@ void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride) {
 }
 
 #ifdef SHADOWLAB_HAVE_X86
-#define SL_AVX2 __attribute__((target("avx2")))
-#define SL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq")))
+#define SL_AVX2 SL_TARGET("avx2")
+#define SL_AVX512 SL_TARGET("avx512f,avx512vl,avx512dq")
 
 // The plane's x term of a block's 8 lanes: z_dx * float(ox + i).
 SL_AVX2 inline __m256 plane_x_avx2(float z_dx, int ox) {

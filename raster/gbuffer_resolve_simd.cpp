@@ -8,13 +8,14 @@
 
 #include "core/cpu_features.h"
 #include "core/gbuffer.h"
+#include "core/simd_target.h"
 
 namespace shadowlab {
 
 #ifdef SHADOWLAB_HAVE_X86
 namespace {
 
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 
 struct V3 {
   __m256 x, y, z;
@@ -144,7 +145,7 @@ SL_AVX2 void resolve_lanes8_avx2(const ResolveRun8& camera, const ResolveLanes8&
 
 #undef SL_AVX2
 
-#define SL_AVX512 __attribute__((target("avx512f,avx512dq")))
+#define SL_AVX512 SL_TARGET("avx512f,avx512dq")
 
 struct W3 {
   __m512 x, y, z;

@@ -8,6 +8,7 @@
 #endif
 
 #include "core/cpu_features.h"
+#include "core/simd_target.h"
 
 namespace shadowlab {
 
@@ -74,7 +75,7 @@ int write_setups(const SetupLanes<Int, Real>& L, int live, int neg, const int* t
   return n;
 }
 
-#define SL_SETUP __attribute__((target("avx512f,avx512dq,avx512vl")))
+#define SL_SETUP SL_TARGET("avx512f,avx512dq,avx512vl")
 
 // The zero-masked forms with every lane on: GCC 12's unmasked ones pass an undefined source
 // that -Wmaybe-uninitialized reports (the same instructions).
@@ -225,7 +226,7 @@ SL_SETUP int setup_batch8_avx512(const SetupBatch8& b, int width, int height, Cu
 // the edge constants (< 2^51) are exact in double, so each value equals setup_triangle's int64
 // one. A batch with a coordinate outside that range (or not finite) goes through the scalar
 // setup whole.
-#define SL_SETUP2 __attribute__((target("avx2")))
+#define SL_SETUP2 SL_TARGET("avx2")
 
 // Lane arrays of one batch between the vector halves and the records.
 struct SetupLanes8 : SetupLanes<double, double> {

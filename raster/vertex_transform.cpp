@@ -6,6 +6,7 @@
 #endif
 
 #include "core/cpu_features.h"
+#include "core/simd_target.h"
 #include "raster/clip.h"
 
 namespace shadowlab {
@@ -21,7 +22,7 @@ void transform_vertices_scalar(const mat4& m, const vec3* pos, size_t n, float g
 #ifdef SHADOWLAB_HAVE_X86
 namespace {
 
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 
 // Bit `bit` in the lanes where d < 0 (ordered: a NaN distance sets nothing; non-finite
 // vertices are replaced by kOutNonFinite anyway).

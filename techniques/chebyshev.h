@@ -3,6 +3,9 @@
 // moment filters that store (mean, variance) per texel: vsm (variance_map.cpp) and evsm
 // (exponential_variance_map.cpp). docs/design.md §6 (VSM, EVSM) gives the model.
 #include <algorithm>
+
+#include "core/simd_target.h"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -43,7 +46,7 @@ inline void mixture_moments(const double w[4], const float* A, const float* B, d
 
 #if defined(__x86_64__)
 // bilinear_weights for 4 lanes in double (fx, fy already widened from float).
-__attribute__((target("avx2"))) inline void bilinear_weights4(__m256d fx, __m256d fy,
+SL_TARGET("avx2") inline void bilinear_weights4(__m256d fx, __m256d fy,
                                                               __m256d w[4]) {
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
@@ -54,7 +57,7 @@ __attribute__((target("avx2"))) inline void bilinear_weights4(__m256d fx, __m256
 }
 
 // bilinear_weights for 8 lanes in double (AVX-512).
-__attribute__((target("avx512f"))) inline void bilinear_weights8(__m512d fx, __m512d fy,
+SL_TARGET("avx512f") inline void bilinear_weights8(__m512d fx, __m512d fy,
                                                                  __m512d w[4]) {
   const __m512d one = _mm512_set1_pd(1.0);
   const __m512d ox = _mm512_sub_pd(one, fx), oy = _mm512_sub_pd(one, fy);
@@ -66,12 +69,12 @@ __attribute__((target("avx512f"))) inline void bilinear_weights8(__m512d fx, __m
 
 // mixture_moments for 4 lanes in double: its operations in its order, so each lane gets its bits;
 // in two halves (mean, then the variance about it) for callers that may skip the second.
-__attribute__((target("avx2"))) inline __m256d mixture_mean4(const __m256d* w, const __m256d* A) {
+SL_TARGET("avx2") inline __m256d mixture_mean4(const __m256d* w, const __m256d* A) {
   __m256d mean = _mm256_setzero_pd();
   for (int i = 0; i < 4; ++i) mean = _mm256_add_pd(mean, _mm256_mul_pd(w[i], A[i]));
   return mean;
 }
-__attribute__((target("avx2"))) inline __m256d mixture_variance4(const __m256d* w,
+SL_TARGET("avx2") inline __m256d mixture_variance4(const __m256d* w,
                                                                 const __m256d* A,
                                                                 const __m256d* B, __m256d mean) {
   __m256d var = _mm256_setzero_pd();
@@ -81,7 +84,7 @@ __attribute__((target("avx2"))) inline __m256d mixture_variance4(const __m256d* 
   }
   return var;
 }
-__attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, const __m256d* A,
+SL_TARGET("avx2") inline void mixture_moments4(const __m256d* w, const __m256d* A,
                                                              const __m256d* B, __m256d& mean,
                                                              __m256d& var) {
   mean = mixture_mean4(w, A);
@@ -90,7 +93,7 @@ __attribute__((target("avx2"))) inline void mixture_moments4(const __m256d* w, c
 
 // chebyshev for 4 lanes in double, before its rounding to float: std::max(a, b) is
 // a < b ? b : a and std::clamp likewise, as compare-and-blend, so each lane gets its bits.
-__attribute__((target("avx2"))) inline __m256d chebyshev4(__m256d t, __m256d mean, __m256d var,
+SL_TARGET("avx2") inline __m256d chebyshev4(__m256d t, __m256d mean, __m256d var,
                                                          __m256d min_var, double bleed) {
   const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
   var = _mm256_blendv_pd(var, min_var, _mm256_cmp_pd(var, min_var, _CMP_LT_OQ));

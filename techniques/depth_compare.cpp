@@ -8,6 +8,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/simd_target.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 #include "techniques/poisson_disk.h"
@@ -73,7 +74,7 @@ float poisson_visibility(const LightFace& f, const float* dist, const Receiver& 
 }
 
 #if defined(__x86_64__)
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 // poisson_visibility for the 8 lanes of a batch (no rpdb: the batch path has no plane gradient),
 // its float operations in its order: the tap's coordinates, bilinear_taps (floor_int, clamp to
 // the face), the four compares as gathers from the stored distances, the weighted sum, the

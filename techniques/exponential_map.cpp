@@ -12,6 +12,7 @@
 #include "core/cpu_features.h"
 #include "core/error.h"
 #include "core/exp_log.h"
+#include "core/simd_target.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 
@@ -61,7 +62,7 @@ inline float esm_combine(float z00, float z10, float z01, float z11, float fx, f
 // AVX2 intrinsics, the same operations in the same order (exp_f8: exp_f's steps; std::min(a, b) is
 // b < a ? b : a, i.e. _mm256_min_ps(b, a)). The compiler left the plain loop scalar.
 #if defined(__x86_64__)
-__attribute__((target("avx2"))) void esm_combine8_avx2(const float (*z)[8], const float* fx,
+SL_TARGET("avx2") void esm_combine8_avx2(const float (*z)[8], const float* fx,
                                                        const float* fy, const float* ct,
                                                        float* out) {
   const __m256 vct = _mm256_loadu_ps(ct), one = _mm256_set1_ps(1.0f);

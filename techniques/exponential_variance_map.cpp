@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/exp_log.h"
+#include "core/simd_target.h"
 #include "techniques/chebyshev.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
@@ -104,7 +105,7 @@ float evsm_value(const EvsmConsts& k, const float* PA, const float* PB, const fl
 }
 
 #if defined(__x86_64__)
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 // warp_bound for 4 lanes in double with AVX2 intrinsics: its operations in its order
 // (std::max(a, b) is a < b ? b : a, std::clamp likewise; exp_d4 gives exp_d's bits), so the
 // lanes get warp_bound's bits before the final rounding to float.

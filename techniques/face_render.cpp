@@ -9,6 +9,7 @@
 
 #include "core/cpu_features.h"
 #include "core/parallel.h"
+#include "core/simd_target.h"
 #include "raster/alpha_test.h"
 #include "raster/pipeline.h"
 #include "techniques/cube_faces.h"
@@ -44,7 +45,7 @@ float row_min_scalar(const float* row, int x0, int x1) {
 // the results, in one AVX2 loop: radial_row's operations in its order per lane (u = u0 +
 // (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its bits. One
 // call per tile: per row, the call's own cost was a third of the loop's.
-__attribute__((target("avx2"))) float radial_tile_min_avx2(float* out, size_t stride, int x0,
+SL_TARGET("avx2") float radial_tile_min_avx2(float* out, size_t stride, int x0,
                                                            int x1, int y0, int y1, float u0,
                                                            float du, float top, float dv,
                                                            float inv_far) {
@@ -83,7 +84,7 @@ __attribute__((target("avx2"))) float radial_tile_min_avx2(float* out, size_t st
 }
 
 // paraboloid_row and row_min_scalar in one AVX2 loop (inv_far / row[x] per lane: its bits).
-__attribute__((target("avx2"))) float paraboloid_row_min_avx2(float* row, int x0, int x1,
+SL_TARGET("avx2") float paraboloid_row_min_avx2(float* row, int x0, int x1,
                                                               float inv_far) {
   __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   int x = x0;

@@ -12,6 +12,7 @@
 #include "core/cpu_features.h"
 #include "core/error.h"
 #include "core/projector.h"
+#include "core/simd_target.h"
 #include "techniques/chebyshev.h"
 
 namespace shadowlab {
@@ -82,7 +83,7 @@ MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, 
 #ifdef SHADOWLAB_HAVE_X86
 namespace {
 
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 
 SL_AVX2 inline __m256 dot3(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by, __m256 bz) {
   // ((ax·bx + ay·by) + az·bz): glm::dot's order.

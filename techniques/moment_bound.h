@@ -26,6 +26,8 @@
 #include <cmath>
 #if defined(__x86_64__)
 #include <immintrin.h>
+
+#include "core/simd_target.h"
 #endif
 
 namespace shadowlab {
@@ -123,13 +125,13 @@ inline void msm_decode16(const double q_in[4], double m[4]) {
 }
 
 #if defined(__x86_64__)
-#define SL_MSM_AVX2 __attribute__((target("avx2")))
+#define SL_MSM_AVX2 SL_TARGET("avx2")
 namespace msm_simd {
 SL_MSM_AVX2 inline __m256d mul(__m256d x, __m256d y) { return _mm256_mul_pd(x, y); }
 SL_MSM_AVX2 inline __m256d add(__m256d x, __m256d y) { return _mm256_add_pd(x, y); }
 SL_MSM_AVX2 inline __m256d sub(__m256d x, __m256d y) { return _mm256_sub_pd(x, y); }
 SL_MSM_AVX2 inline __m256d div(__m256d x, __m256d y) { return _mm256_div_pd(x, y); }
-#define SL_MSM_AVX512 __attribute__((target("avx512f,avx512dq")))
+#define SL_MSM_AVX512 SL_TARGET("avx512f,avx512dq")
 SL_MSM_AVX512 inline __m512d mul(__m512d x, __m512d y) { return _mm512_mul_pd(x, y); }
 SL_MSM_AVX512 inline __m512d add(__m512d x, __m512d y) { return _mm512_add_pd(x, y); }
 SL_MSM_AVX512 inline __m512d sub(__m512d x, __m512d y) { return _mm512_sub_pd(x, y); }

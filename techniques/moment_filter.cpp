@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
+#include "core/simd_target.h"
 #include "core/stream_copy.h"
 #include "techniques/texel_tiles.h"
 
@@ -213,7 +214,7 @@ SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double s
 // The same operations, 8 and 4 lanes at a time, the tail by the scalar rows. min(d, 1) is
 // finite_dist (minps returns its second operand unless d < 1, NaN included); the AVX-512
 // conversion is the zero-masked form for GCC 12's sake (core/exp_log.h's exp_d8).
-__attribute__((target("avx512f"))) void esm_exp_row_avx512(const float* row, int w, double c,
+SL_TARGET("avx512f") void esm_exp_row_avx512(const float* row, int w, double c,
                                                            double d_min, double* out) {
   const __m256 one = _mm256_set1_ps(1.0f);
   const __m512d vc = _mm512_set1_pd(c), vmin = _mm512_set1_pd(d_min);
@@ -225,7 +226,7 @@ __attribute__((target("avx512f"))) void esm_exp_row_avx512(const float* row, int
   esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
 }
 
-__attribute__((target("avx2"))) void esm_exp_row_avx2(const float* row, int w, double c,
+SL_TARGET("avx2") void esm_exp_row_avx2(const float* row, int w, double c,
                                                       double d_min, double* out) {
   const __m128 one = _mm_set1_ps(1.0f);
   const __m256d vc = _mm256_set1_pd(c), vmin = _mm256_set1_pd(d_min);
@@ -251,7 +252,7 @@ SL_ROW_CLONES void warp_row_f_scalar(const float* row, int w, double c, double s
   }
 }
 
-__attribute__((target("avx512f"))) void warp_row_f_avx512(const float* row, int w, double c,
+SL_TARGET("avx512f") void warp_row_f_avx512(const float* row, int w, double c,
                                                           double sign, float* v) {
   const __m512 one = _mm512_set1_ps(1.0f), sc = _mm512_set1_ps(float(sign * c));
   const __m512 fs = _mm512_set1_ps(float(sign));
@@ -265,7 +266,7 @@ __attribute__((target("avx512f"))) void warp_row_f_avx512(const float* row, int 
   warp_row_f_scalar(row + x, w - x, c, sign, v + x);
 }
 
-__attribute__((target("avx2"))) void warp_row_f_avx2(const float* row, int w, double c,
+SL_TARGET("avx2") void warp_row_f_avx2(const float* row, int w, double c,
                                                      double sign, float* v) {
   const __m256 one = _mm256_set1_ps(1.0f), sc = _mm256_set1_ps(float(sign * c));
   const __m256 fs = _mm256_set1_ps(float(sign));
@@ -470,7 +471,7 @@ SL_ROW_CLONES void esm_out_k_scalar(const double* const* rows, int w, double inv
 // The same sums and log_d8 / log_d4 (core/exp_log.h), 8 and 4 lanes at a time; the tail by the
 // scalar kernel. The AVX-512 conversion is the zero-masked form (as in esm_exp_row_avx512).
 template <int K>
-__attribute__((target("avx512f"))) void esm_out_k_avx512(const double* const* rows, int w,
+SL_TARGET("avx512f") void esm_out_k_avx512(const double* const* rows, int w,
                                                          double inv, double c, double d_min,
                                                          float* out) {
   const double* r[K];
@@ -488,7 +489,7 @@ __attribute__((target("avx512f"))) void esm_out_k_avx512(const double* const* ro
 }
 
 template <int K>
-__attribute__((target("avx2"))) void esm_out_k_avx2(const double* const* rows, int w,
+SL_TARGET("avx2") void esm_out_k_avx2(const double* const* rows, int w,
                                                     double inv, double c, double d_min,
                                                     float* out) {
   const double* r[K];
@@ -555,7 +556,7 @@ inline void msm_out_texel(const float* const* rows, int x, float inv, float* out
   }
 }
 template <int K>
-__attribute__((target("avx512f"))) inline __m512d sum_rows8(const double* const* rows, int x) {
+SL_TARGET("avx512f") inline __m512d sum_rows8(const double* const* rows, int x) {
   __m512d a = _mm512_loadu_pd(rows[0] + x);
   for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(rows[j] + x));
   return a;
@@ -569,7 +570,7 @@ __attribute__((target("avx512f"))) inline __m512d sum_rows8(const double* const*
 // two passes, in one; the same bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoops-
 // BitForBit). Texels before the first line and after the last whole 8 go one by one.
 template <int K>
-__attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double* const* rows,
+SL_TARGET("avx512f") void vsm_out_interleaved_avx512(const double* const* rows,
                                                                    int w, double inv,
                                                                    float* out) {
   const int head = texels_to_line(out, 2, w);
@@ -594,7 +595,7 @@ __attribute__((target("avx512f"))) void vsm_out_interleaved_avx512(const double*
 // The same in AVX2, 4 texels (one 32-byte store) per step: the AVX2-only machines' fused row
 // (before it, their rows went through vsm_out_k into scratch and interleave_row, two passes).
 template <int K>
-__attribute__((target("avx2"))) void vsm_out_interleaved_avx2(const double* const* rows, int w,
+SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w,
                                                               double inv, float* out) {
   const int head = texels_to_line(out, 2, w);
   int x = 0;
@@ -631,7 +632,7 @@ __attribute__((target("avx2"))) void vsm_out_interleaved_avx2(const double* cons
 // (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
 // first 64-byte line and after the last whole 16 go one by one in the same operations.
 template <int K>
-__attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* const* rows,
+SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
                                                                    int w, float inv,
                                                                    float* out) {
   // Non-temporal stores need aligned addresses: a row that cannot reach a line on a texel
@@ -679,7 +680,7 @@ __attribute__((target("avx512f"))) void msm_out_interleaved_avx512(const float* 
 // step: the AVX2-only machines' fused row (before it: mean_out_k into tmp rows,
 // interleave4_row and the stream copy, three passes).
 template <int K>
-__attribute__((target("avx2"))) void msm_out_interleaved_avx2(const float* const* rows, int w,
+SL_TARGET("avx2") void msm_out_interleaved_avx2(const float* const* rows, int w,
                                                               float inv, float* out) {
   const int head = texels_to_line(out, 4, w, w);
   int x = 0;

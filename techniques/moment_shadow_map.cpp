@@ -14,6 +14,7 @@
 
 #include "core/cpu_features.h"
 #include "core/parallel.h"
+#include "core/simd_target.h"
 #include "techniques/chebyshev.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
@@ -109,7 +110,7 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
 }
 
 #if defined(__x86_64__)
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 // msm_value for the 8 lanes of each of N batches, from their bilinearly mixed moments
 // (bilinear8_mix4_avx2: msm_value's sum, bit for bit), each batch in two halves of 4 doubles:
 // msm_value's remaining operations in its order, the 2N halves' reconstructions side by side
@@ -145,14 +146,14 @@ SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const double (*const* mixed)[8],
 
 // 8 floats widened to doubles: the zero-masked conversion with every lane on (GCC 12's unmasked
 // one passes an undefined source that -Wmaybe-uninitialized reports; the same instruction).
-__attribute__((target("avx512f"))) inline __m512d widen8(const float* p) {
+SL_TARGET("avx512f") inline __m512d widen8(const float* p) {
   return _mm512_maskz_cvtps_pd(0xFF, _mm256_loadu_ps(p));
 }
 
 // msm_batch_avx2's operations on N batches of 8 lanes at once (msm_intensity8n: N > 1 overlaps
 // the batches' chains of divisions).
 template <int N>
-__attribute__((target("avx512f,avx512dq"))) void msm_batch_avx512(
+SL_TARGET("avx512f,avx512dq") void msm_batch_avx512(
     const MsmConsts& k, const float (*const* v)[4][8], const float* const* fx,
     const float* const* fy, const float* const* depth, float* const* out) {
   const __m512d one = _mm512_set1_pd(1.0);

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/simd_target.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
 #include "techniques/penumbra_model.h"
@@ -183,7 +184,7 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
 }
 
 #if defined(__x86_64__)
-#define SL_AVX2 __attribute__((target("avx2")))
+#define SL_AVX2 SL_TARGET("avx2")
 // Lanes whose tap (x, y) lies outside [1, w − 1] × [1, h − 1], where tap_face would look it up in
 // another face (those lanes take the scalar stages).
 SL_AVX2 inline __m256 pcss_outside(__m256 x, __m256 y, __m256 wm1, __m256 hm1) {

@@ -7,11 +7,12 @@
 #include <immintrin.h>
 
 #include "core/math.h"
+#include "core/simd_target.h"
 #include "techniques/map_lookup_simd.h"
 
 namespace shadowlab {
 
-#define SL_TAP_AVX2 __attribute__((target("avx2")))
+#define SL_TAP_AVX2 SL_TARGET("avx2")
 
 // The per-face table entry of each lane's face (table: MapLookupConsts' width, height, offset).
 SL_TAP_AVX2 inline __m256i face_lanes(const int32_t* table, __m256i face) {

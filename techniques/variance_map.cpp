@@ -10,6 +10,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/simd_target.h"
 #include "techniques/chebyshev.h"
 #include "techniques/map_filter.h"
 #include "techniques/map_lookup.h"
@@ -99,7 +100,7 @@ inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const
 // vsm_value (centred moments, not fp32) for 4 lanes in double: its operations in its order
 // (std::max(a, b) is a < b ? b : a, a blend on that compare; std::clamp likewise), so the lanes
 // get vsm_value's bits.
-__attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
+SL_TARGET("avx2") __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
                                                   const __m256d* B, const __m256* M4,
                                                   __m256d fx, __m256d fy, __m256d t,
                                                   __m256d active, int half) {
@@ -132,7 +133,7 @@ __attribute__((target("avx2"))) __m256d vsm_value4(const VsmConsts& k, const __m
 }
 
 // The 8 lanes of a batch: two halves of vsm_value4.
-__attribute__((target("avx2"))) void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
+SL_TARGET("avx2") void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
                                                     const float* fx, const float* fy,
                                                     const float* depth, const int32_t* active,
                                                     float* out) {

@@ -1,6 +1,8 @@
 // exp_d and log_d (core/exp_log.h) against long double, and their vectorized loops against
 // the scalar calls, bit for bit.
 #include "core/exp_log.h"
+#include "core/cpu_features.h"
+#include "core/simd_target.h"
 
 #include <gtest/gtest.h>
 
@@ -28,23 +30,23 @@ __attribute__((target_clones("avx2", "default"))) void log_loop(const double* x,
   for (int i = 0; i < n; ++i) y[i] = log_d(x[i]);
 }
 
-__attribute__((target("avx2"), noinline)) void exp4_store(const double* x, double* y) {
+SL_TARGET("avx2") __attribute__((noinline)) void exp4_store(const double* x, double* y) {
   _mm256_store_pd(y, exp_d4(_mm256_load_pd(x)));
 }
-__attribute__((target("avx512f"), noinline)) void exp8_store(const double* x, double* y) {
+SL_TARGET("avx512f") __attribute__((noinline)) void exp8_store(const double* x, double* y) {
   _mm512_storeu_pd(y, exp_d8(_mm512_loadu_pd(x)));
 }
-__attribute__((target("avx2"), noinline)) void log4_store(const double* x, double* y) {
+SL_TARGET("avx2") __attribute__((noinline)) void log4_store(const double* x, double* y) {
   _mm256_storeu_pd(y, log_d4(_mm256_loadu_pd(x)));
 }
-__attribute__((target("avx512f"), noinline)) void log8_store(const double* x, double* y) {
+SL_TARGET("avx512f") __attribute__((noinline)) void log8_store(const double* x, double* y) {
   _mm512_storeu_pd(y, log_d8(_mm512_loadu_pd(x)));
 }
 
-__attribute__((target("avx2"), noinline)) void expf8_store(const float* x, float* y) {
+SL_TARGET("avx2") __attribute__((noinline)) void expf8_store(const float* x, float* y) {
   _mm256_storeu_ps(y, exp_f8(_mm256_loadu_ps(x)));
 }
-__attribute__((target("avx512f"), noinline)) void expf16_store(const float* x, float* y) {
+SL_TARGET("avx512f") __attribute__((noinline)) void expf16_store(const float* x, float* y) {
   _mm512_storeu_ps(y, exp_f16(_mm512_loadu_ps(x)));
 }
 
@@ -103,7 +105,7 @@ TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
 // exp_d4 (AVX2 intrinsics, for hand-written kernels) gives exp_d's bits, negative arguments
 // included (EVSM's negative warp).
 TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
-  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(-700.0, 700.0);
   for (int i = 0; i < 100000; i += 4) {
@@ -120,7 +122,7 @@ TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
 // exp_d8 (AVX-512: the table by a two-register permute) likewise, every table index and both
 // signs of the exponent: 2^(j/16) at j = 0..15 are hit by x = (16q + j)·ln2/16.
 TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
-  if (!__builtin_cpu_supports("avx512f")) GTEST_SKIP() << "no AVX-512 on this CPU";
+  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-700.0, 700.0);
   for (int i = 0; i < 100000; i += 8) {
@@ -139,7 +141,7 @@ TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
 // grid of ln2/24 steps over [-59, 59] (both signs: EVSM's negative warp; and the reduction's
 // rounding to the nearest multiple of ln2 from either side).
 TEST(ExpLog, IntrinsicFloatExpsGiveTheScalarBits) {
-  const bool avx2 = __builtin_cpu_supports("avx2"), avx512 = __builtin_cpu_supports("avx512f");
+  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
   if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-87.0f, 88.0f);
@@ -166,7 +168,7 @@ TEST(ExpLog, IntrinsicFloatExpsGiveTheScalarBits) {
 // log_d4 and log_d8 give log_d's bits: every mantissa step (both sides of the fold at 1.5),
 // arguments just below and above 1 and powers of two, and random ones over [e^-690, e^700].
 TEST(ExpLog, IntrinsicLogsGiveTheScalarBits) {
-  const bool avx2 = __builtin_cpu_supports("avx2"), avx512 = __builtin_cpu_supports("avx512f");
+  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
   if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> u(-690.0, 700.0);

@@ -3,6 +3,7 @@
 // bound is known in closed form (two Dirac deltas, whose moments determine them; three atoms at
 // 0, u and 1 for the Hausdorff bound); the lower-bound property on random distributions; the
 // 16-bit quantization's matrices; the AVX2 lanes against the scalar bits.
+#include "core/simd_target.h"
 #include "techniques/moment_bound.h"
 
 #include <fmt/format.h>
@@ -213,7 +214,7 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
 
 #if defined(__x86_64__)
 // The kernels on lanes m[k][lane] (moment k + 1), z[lane].
-__attribute__((target("avx2"))) void intensity4(const double (*m)[32], const double* z,
+SL_TARGET("avx2") void intensity4(const double (*m)[32], const double* z,
                                                 double alpha, bool hausdorff, double* out) {
   __m256d mv[1][4], g;
   for (int k = 0; k < 4; ++k) mv[0][k] = _mm256_loadu_pd(m[k]);
@@ -222,7 +223,7 @@ __attribute__((target("avx2"))) void intensity4(const double (*m)[32], const dou
   _mm256_storeu_pd(out, g);
 }
 // Two groups of 4 side by side (msm_intensity4n<2>, the AVX2 batch's halves).
-__attribute__((target("avx2"))) void intensity4x2(const double (*m)[32], const double* z,
+SL_TARGET("avx2") void intensity4x2(const double (*m)[32], const double* z,
                                                   double alpha, bool hausdorff, double* out) {
   __m256d mv[2][4], zv[2], g[2];
   for (int h = 0; h < 2; ++h) {
@@ -232,7 +233,7 @@ __attribute__((target("avx2"))) void intensity4x2(const double (*m)[32], const d
   msm_intensity4n<2>(mv, zv, alpha, hausdorff, g);
   for (int h = 0; h < 2; ++h) _mm256_storeu_pd(out + 4 * h, g[h]);
 }
-__attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[32],
+SL_TARGET("avx512f,avx512dq") void intensity8(const double (*m)[32],
                                                             const double* z, double alpha,
                                                             bool hausdorff, double* out) {
   __m512d mv[1][4], g;
@@ -242,7 +243,7 @@ __attribute__((target("avx512f,avx512dq"))) void intensity8(const double (*m)[32
   _mm512_storeu_pd(out, g);
 }
 // Four groups of 8 side by side (msm_intensity8n<4>, the MSM lookup's groups of batches).
-__attribute__((target("avx512f,avx512dq"))) void intensity8x4(const double (*m)[32],
+SL_TARGET("avx512f,avx512dq") void intensity8x4(const double (*m)[32],
                                                               const double* z, double alpha,
                                                               bool hausdorff, double* out) {
   __m512d mv[4][4], zv[4], g[4];
