@@ -13,6 +13,7 @@ obj=../shared/assets/bench/room100k.obj
 [ -x "$rb" ] || { echo "peer_rounds.sh: $rb: build first" >&2; exit 2; }
 [ -f "$obj" ] || { echo "peer_rounds.sh: $obj: not found" >&2; exit 2; }
 ours() { "$rb" "$@" 2>&1 | sed -n 's/.*median *\([0-9.]*\).*/\1/p'; }
+ratio() { "$rb" --scaling "$@" 2>&1 | sed -n 's/.*ratio median *\([0-9.]*\).*/\1/p'; }
 peer() { LP_NUM_THREADS=2 "$lp" "$@" 2>&1; }
 med() { sed -n "s/.*$1.*ms_med=\([0-9.]*\).*/\1/p"; }
 for ((i = 0; i < rounds; ++i)); do
@@ -24,10 +25,10 @@ for ((i = 0; i < rounds; ++i)); do
   echo "llvmpipe camera_noshadow $(peer --tris 100k --sizes 1024 --objcull 0 --runs 7 --camera 1 | med 'camera_noshadow')"
   echo "ours cube1m $(ours --scene room1m --threads 2 --repeats 11 --only cube)"
   echo "llvmpipe cube1m $(peer --tris 1m --sizes 1024 --objcull 0 --runs 5 | med 'cube_depth')"
-  for t in 1 2; do
-    for job in cube gbuffer lookup; do
-      echo "ours t$t-$job $(ours --scene "$obj" --threads "$t" --repeats 11 --only "$job")"
-    done
-    echo "ours t$t-cube1m $(ours --scene room1m --threads "$t" --repeats 11 --only cube)"
+  # 1 -> 2 thread scaling: raster_bench --scaling alternates the two counts repeat by repeat
+  # and prints the median of the per-repeat ratios ("scaling-JOB ratio").
+  for job in cube gbuffer lookup; do
+    echo "ours scaling-$job $(ratio --scene "$obj" --threads 2 --repeats 11 --only "$job")"
   done
+  echo "ours scaling-cube1m $(ratio --scene room1m --threads 2 --repeats 11 --only cube)"
 done

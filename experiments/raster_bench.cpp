@@ -1,6 +1,10 @@
 // raster_bench: times the rasterizer's three jobs on any scene — the depth-only cube shadow map
 // (all 6 faces), the camera GBuffer pass and the cube-map lookup pass (pcf=1) — and prints the
-// median, min and max over the repeats with the triangle and thread counts.
+// median, min and max over the repeats with the triangle and thread counts. With --scaling it
+// times each job at 1 thread and at --threads N instead, the two alternating repeat by repeat
+// (README "Rasterizer benchmark": the machines drift 10-20 % within minutes, so a ratio of two
+// separate runs' medians measured the drift as much as the scaling), and prints the median of
+// the per-repeat ratios.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -32,6 +36,37 @@ Stat time_it(int repeats, Fn&& fn) {
   return {median(t), *std::min_element(t.begin(), t.end()), *std::max_element(t.begin(), t.end())};
 }
 
+// One job's 1 -> n thread scaling: each repeat times the job at 1 thread, then at n, each after
+// an untimed run at its count (a new thread count starts a new worker arena: core/parallel.h).
+struct Scaling {
+  Stat one, many, ratio;
+};
+
+template <class Fn>
+Scaling time_scaling(int repeats, int n, Fn&& fn) {
+  std::vector<double> t1, tn, r;
+  for (int i = 0; i < repeats; ++i) {
+    for (const int threads : {1, n}) {
+      set_thread_count(threads);
+      fn();
+      const auto s = std::chrono::steady_clock::now();
+      fn();
+      (threads == 1 ? t1 : tn).push_back(ms_since(s));
+    }
+    r.push_back(t1.back() / tn.back());
+  }
+  set_thread_count(n);
+  auto stat = [](const std::vector<double>& v) {
+    return Stat{median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
+  };
+  return {stat(t1), stat(tn), stat(r)};
+}
+
+void print_scaling(const char* what, int n, const Scaling& s) {
+  std::printf("%-34s 1 -> %d threads: ratio median %.3f   min %.3f   max %.3f   (1 thread median %.2f ms, %d threads %.2f ms)\n",
+              what, n, s.ratio.median, s.ratio.min, s.ratio.max, s.one.median, n, s.many.median);
+}
+
 void print(const char* what, const Stat& s) {
   std::printf("%-34s median %8.2f ms   min %8.2f   max %8.2f\n", what, s.median, s.min, s.max);
 }
@@ -50,7 +85,14 @@ int main(int argc, char** argv) {
     add_text(cl, "--cull", "MODE", "none, back or front (default none)", cull_name);
     add_repeats(cl, repeats, 10, "after one untimed warm-up; min and max also printed");
     add_text(cl, "--only", "JOB", "cube, gbuffer or lookup: time one job (e.g. under callgrind)", only);
+    bool scaling = false;
+    add_switch(cl, "--scaling",
+               "time each job at 1 thread and at --threads N (N >= 2), alternating repeat by "
+               "repeat, and print the median of the per-repeat ratios", scaling);
     if (!parse_command_line(cl, argc, argv)) return 0;
+    if (scaling && thread_count() < 2)
+      throw InputError("--scaling", "compares 1 thread with --threads N, and N is " +
+                                        std::to_string(thread_count()) + " (give --threads 2 or more)");
     CullMode cull = CullMode::None;
     if (cull_name == "back") cull = CullMode::Back;
     else if (cull_name == "front") cull = CullMode::Front;
@@ -75,12 +117,19 @@ int main(int argc, char** argv) {
     ImageF mask;
     ImageU32 texels;
     auto lookup = [&] { lookup_light_map(scene, g, p, map, mask, &texels); };
-    if (want("cube")) print("depth-only cube (6 faces)", time_it(repeats, cube));
-    if (want("gbuffer")) print("camera GBuffer pass", time_it(repeats, gbuffer));
+    const int n = thread_count();
+    auto job = [&](const char* what, auto&& fn) {
+      if (scaling)
+        print_scaling(what, n, time_scaling(repeats, n, fn));
+      else
+        print(what, time_it(repeats, fn));
+    };
+    if (want("cube")) job("depth-only cube (6 faces)", cube);
+    if (want("gbuffer")) job("camera GBuffer pass", gbuffer);
     if (want("lookup")) {
       if (!want("cube")) cube();  // the lookup needs a map and a GBuffer, untimed
       if (!want("gbuffer")) gbuffer();
-      print("CSM lookup pass (pcf=1)", time_it(repeats, lookup));
+      job("CSM lookup pass (pcf=1)", lookup);
     }
     return 0;
   });

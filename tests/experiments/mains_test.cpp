@@ -55,6 +55,7 @@ TEST(Mains, BadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error("raster_bench --repeats 3", "--repeats");
   expect_clear_error("raster_bench --res 0", "--res");
   expect_clear_error("raster_bench --only everything", "--only");
+  expect_clear_error("raster_bench --scaling --threads 1", "--scaling");
 }
 
 // Every experiment takes the common flags; one it does not use is named in its --help and is a
