@@ -60,8 +60,8 @@ struct AlphaDiscardShader {
   bool operator()(const Fragment& f) const {
     return alpha_fragment_passes(*alpha, f.triangle, f.bary) && (*inner)(f);
   }
-  void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
-    if constexpr (HasFinishTile<Inner>) inner->finish_tile(x0, y0, x1, y1, depth);
+  void finish_tile(int x0, int y0, int x1, int y1, float* z, size_t stride) const {
+    if constexpr (HasFinishTile<Inner>) inner->finish_tile(x0, y0, x1, y1, z, stride);
   }
 };
 

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/aligned_vector.h"
+
 namespace shadowlab {
 
 constexpr int kSubpixelBits = 8;
@@ -56,7 +58,7 @@ struct DepthTarget {
   int width = 0;
   int height = 0;
   bool with_ids = false;
-  std::vector<float> inv_w;
+  LineAlignedFloats inv_w;  // 64-byte aligned: rasterize_frame streams whole lines into it
   std::vector<uint32_t> ids;
   // Sizes the target without clearing (the rasterizer clears tile by tile).
   void resize(int w, int h) {

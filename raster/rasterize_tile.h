@@ -12,8 +12,10 @@
 // stored value, so of two equal depths the earlier triangle wins), and may write per-pixel
 // data of its own; the last kept fragment of a pixel is the visible one.
 #include <algorithm>
+#include <cstdint>
 
 #include "core/parallel.h"
+#include "core/stream_copy.h"
 #include "raster/depth_kernels.h"
 #include "raster/tile_binner.h"
 
@@ -68,16 +70,16 @@ inline void shade_pixel(const TriangleSetup& s, int x, int y, int64_t e0, int64_
 // [x0, x1) × [y0, y1) (a tile) as whole 8×8 blocks through the SIMD kernel, one call per row of
 // blocks (depth_row8: the walk from block to block in the kernel's registers). Same coverage
 // and depth as the generic path, pixel for pixel.
+// The storage is a view: pixel (x, y)'s 1/w at z[y · width + x] and its id at ids[y · width + x]
+// (ids null: none kept), the whole target's or a tile-local buffer's (rasterize_frame).
 inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int x1, int y1,
-                                    DepthTarget& depth) {
+                                    float* z, uint32_t* ids, size_t width) {
   const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
   const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
   if (min_x > max_x || min_y > max_y) return;
-  const size_t width = size_t(depth.width);
   static const DepthTriangleFn whole = depth_triangle_selected();
   if (whole) {
-    whole(s, x0, y0, x1, y1, depth.inv_w.data(), depth.with_ids ? depth.ids.data() : nullptr,
-          width);
+    whole(s, x0, y0, x1, y1, z, ids, width);
     return;
   }
   const int64_t half = kSubpixelOne / 2;
@@ -114,8 +116,8 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
       row.lo_off[k] = std::min<int64_t>(0, x_span[k]) + std::min<int64_t>(0, dy);
       row.hi_off[k] = std::max<int64_t>(0, x_span[k]) + std::max<int64_t>(0, dy);
     }
-    float* zrow = depth.inv_w.data() + size_t(py0) * width;
-    uint32_t* idrow = depth.with_ids ? depth.ids.data() + size_t(py0) * width : nullptr;
+    float* zrow = z + size_t(py0) * width;
+    uint32_t* idrow = ids ? ids + size_t(py0) * width : nullptr;
     row.ids = idrow ? idrow + bx_start : nullptr;
     if (row.blocks > 0) depth_row8(row, zrow + bx_start, width);
     if (!cut) continue;
@@ -133,13 +135,19 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
         const int64_t e2 = e[2] + row.step_x[2] * dx + row.step_y[2] * dy;
         if ((e0 | e1 | e2) < 0) continue;
         const float iw = plane_depth(s, x, y);
-        float& z = depth.inv_w[size_t(y) * width + size_t(x)];
-        if (iw > z) {
-          z = iw;
-          if (depth.with_ids) depth.ids[size_t(y) * width + size_t(x)] = s.triangle;
+        float& zp = z[size_t(y) * width + size_t(x)];
+        if (iw > zp) {
+          zp = iw;
+          if (ids) ids[size_t(y) * width + size_t(x)] = s.triangle;
         }
       }
   }
+}
+
+inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int x1, int y1,
+                                    DepthTarget& depth) {
+  rasterize_depth_in_rect(s, x0, y0, x1, y1, depth.inv_w.data(),
+                          depth.with_ids ? depth.ids.data() : nullptr, size_t(depth.width));
 }
 
 // Rasterizes triangle `s` inside the pixel rectangle [x0, x1) × [y0, y1) (a tile, whose origin
@@ -199,11 +207,22 @@ void rasterize_triangle_in_rect(const TriangleSetup& s, int x0, int y0, int x1, 
   }
 }
 
-// Shaders may also define `void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget&)`,
-// called once per tile after its last triangle while the tile is still in cache (e.g. to turn
-// 1/w into stored shadow-map values).
+// Shaders may also define `void finish_tile(int x0, int y0, int x1, int y1, float* z,
+// size_t stride)`, called once per tile after its last triangle while the tile is still in cache
+// (e.g. to turn 1/w into stored shadow-map values): pixel (x, y)'s value is z[y · stride + x],
+// in the target itself or in the tile-local buffer (rasterize_frame), which rasterize_frame then
+// copies into the target.
 template <class Shader>
-concept HasFinishTile = requires(Shader& s, const DepthTarget& d) { s.finish_tile(0, 0, 0, 0, d); };
+concept HasFinishTile = requires(Shader& s, float* z) { s.finish_tile(0, 0, 0, 0, z, size_t(0)); };
+
+// Pixel (x, y) of the tile whose corner is (x0, y0) at origin[y · kTileSize + x] for a tile-local
+// buffer `tile` of kTileSize² values: the origin is the address kTileSize · y0 + x0 floats before
+// the buffer, formed as an integer because it lies outside it (only addresses inside it are
+// read or written). The kernels then address the buffer with the target's own coordinates.
+inline float* tile_origin(float* tile, int x0, int y0) {
+  const size_t before = (size_t(y0) * size_t(kTileSize) + size_t(x0)) * sizeof(float);
+  return reinterpret_cast<float*>(reinterpret_cast<uintptr_t>(tile) - before);
+}
 
 // Rasterizes every binned triangle into `depth` (sized by the caller; with `clear`, each tile
 // clears its own pixels first, while they are in cache; without, it draws over what an earlier
@@ -214,11 +233,47 @@ template <class Shader>
 void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shader,
                      bool clear = true) {
   const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
+  // Depth-only shaders on a cleared target without ids draw each tile into a tile-local buffer
+  // (16 KB, in L1) and copy it into the target at the end with non-temporal stores
+  // (core/stream_copy.h): the target's lines are then written without first being read, where
+  // clearing them in place read every line of the target from memory (README "Rasterizer
+  // benchmark", thirteenth session). The same operations on the same values: the same bits.
+  // Only where every tile row starts on a 64-byte line (a 64-byte aligned target, rows a multiple
+  // of 16 floats): partial lines written non-temporally measured slower than clearing in place.
+  constexpr bool kDepthOnly = !Shader::kNeedsAttributes && kKeepsAll<Shader>;
+  const bool local = kDepthOnly && clear && !depth.with_ids && depth.width % 16 == 0 &&
+                     reinterpret_cast<uintptr_t>(depth.inv_w.data()) % 64 == 0;
+  static const StreamCopy copy = stream_copy_kernel();
   parallel_for(0, tiles, [&](size_t t) {
     const int tx = int(t % size_t(frame.tiles_x)), ty = int(t / size_t(frame.tiles_x));
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(frame.width, x0 + kTileSize);
     const int y1 = std::min(frame.height, y0 + kTileSize);
+    if constexpr (kDepthOnly) {
+      if (local) {
+        alignas(64) float tile[kTileSize * kTileSize];
+        for (int y = 0; y < y1 - y0; ++y) std::fill_n(tile + y * kTileSize, x1 - x0, 0.0f);
+        float* const origin = tile_origin(tile, x0, y0);
+        for (const BinnedChunk& chunk : frame.chunks) {
+          const uint32_t end = chunk.offsets[t + 1];
+          for (uint32_t i = chunk.offsets[t]; i < end; ++i) {
+            if (i + kPrefetchAhead < end) {
+              const char* next = reinterpret_cast<const char*>(&chunk.setups[chunk.items[i + kPrefetchAhead]]);
+              for (size_t line = 0; line < sizeof(TriangleSetup); line += 64)
+                __builtin_prefetch(next + line);
+            }
+            rasterize_depth_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, origin, nullptr,
+                                    size_t(kTileSize));
+          }
+        }
+        if constexpr (HasFinishTile<Shader>) shader.finish_tile(x0, y0, x1, y1, origin, size_t(kTileSize));
+        for (int y = y0; y < y1; ++y)
+          copy(tile + (y - y0) * kTileSize, size_t(x1 - x0),
+               depth.inv_w.data() + size_t(y) * size_t(depth.width) + x0);
+        stream_fence();  // the copies' stores before the tile is done (core/stream_copy.h)
+        return;
+      }
+    }
     for (int y = y0; y < y1 && clear; ++y) {
       std::fill_n(depth.inv_w.data() + size_t(y) * size_t(depth.width) + x0, x1 - x0, 0.0f);
       if (depth.with_ids)
@@ -241,7 +296,8 @@ void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shade
           rasterize_triangle_in_rect(chunk.setups[chunk.items[i]], x0, y0, x1, y1, depth, shader);
       }
     }
-    if constexpr (HasFinishTile<Shader>) shader.finish_tile(x0, y0, x1, y1, depth);
+    if constexpr (HasFinishTile<Shader>)
+      shader.finish_tile(x0, y0, x1, y1, depth.inv_w.data(), size_t(depth.width));
   });
 }
 

@@ -123,17 +123,16 @@ struct FaceRadialShader {
   static constexpr bool kKeepsAll = true;
   const LightFace* face;
   float inv_far;
-  float* out;  // the target's own 1/w storage: each texel is read, then overwritten
   std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits), or null
   bool avx2;  // radial_tile_min_avx2 (else radial_row + row_min_scalar: the same bits)
   bool operator()(const Fragment&) const { return true; }
-  void finish_tile(int x0, int y0, int x1, int y1, const DepthTarget& depth) const {
+  void finish_tile(int x0, int y0, int x1, int y1, float* out, size_t stride) const {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
     const float du = (face->right_edge - face->left) / float(face->width);
     const float dv = (face->top - face->bottom) / float(face->height);
     if (!min_bits) {
       for (int y = y0; y < y1; ++y) {
-        float* const row = out + size_t(y) * size_t(depth.width);
+        float* const row = out + size_t(y) * stride;
         if (face->paraboloid)
           paraboloid_row(row, x0, x1, inv_far);
         else
@@ -144,11 +143,11 @@ struct FaceRadialShader {
     // With the conversion: the stored distances' minimum (ESM's shift).
     float m = std::numeric_limits<float>::infinity();
     if (avx2 && !face->paraboloid) {
-      m = radial_tile_min_avx2(out, size_t(depth.width), x0, x1, y0, y1, face->left, du,
+      m = radial_tile_min_avx2(out, stride, x0, x1, y0, y1, face->left, du,
                                face->top, dv, inv_far);
     } else {
       for (int y = y0; y < y1; ++y) {
-        float* const row = out + size_t(y) * size_t(depth.width);
+        float* const row = out + size_t(y) * stride;
         float rm;
         if (face->paraboloid) {
           if (avx2) {
@@ -230,7 +229,7 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
     DepthTarget target;
     target.inv_w.swap(out.distance[i]);
     target.resize(face.width, face.height);
-    FaceRadialShader shader{&face, 1.0f / scene.light.far, target.inv_w.data(),
+    FaceRadialShader shader{&face, 1.0f / scene.light.far,
                             min_distance ? &min_bits[i] : nullptr,
                             use_avx2_paths()};
     if (face.paraboloid) {

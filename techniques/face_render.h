@@ -5,6 +5,7 @@
 // for every layout and technique (the pipeline's stage 3, techniques/light_map.h).
 #include <vector>
 
+#include "core/aligned_vector.h"
 #include "core/scene.h"
 #include "raster/raster_types.h"
 #include "techniques/light_faces.h"
@@ -12,7 +13,7 @@
 namespace shadowlab {
 
 struct FaceDistances {
-  std::vector<std::vector<float>> distance;  // per face: texel_count() values, or empty if not rendered
+  std::vector<LineAlignedFloats> distance;  // per face (64-byte aligned: raster/raster_types.h): texel_count() values, or empty if not rendered
   std::vector<bool> rendered;
   // Per face, when asked for: the smallest stored distance (+inf when it saw nothing, or was not
   // rendered), found in the tile epilogue's conversion loop (the ESM filter's shift). Empty

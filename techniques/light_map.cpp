@@ -34,7 +34,7 @@ void render_light_map(const Scene& scene, const MapParams& p, const std::vector<
   if (p.depth == DepthFormat::F32) return;
   for (size_t f = 0; f < map.dist.distance.size(); ++f) {
     if (!map.dist.rendered[f]) continue;
-    std::vector<float>& d = map.dist.distance[f];
+    LineAlignedFloats& d = map.dist.distance[f];
     quantize_depths(d.data(), d.size(), p.depth);
     if (map.dist.min_distance.empty()) continue;
     // The stored values' minimum again (the render's was of the unquantized distances), per

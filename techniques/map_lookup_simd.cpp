@@ -17,10 +17,13 @@
 
 namespace shadowlab {
 
-PlaneGather plane_gather(const std::vector<std::vector<float>>& planes) {
+namespace {
+
+template <class Planes>
+PlaneGather gather_planes(const Planes& planes) {
   PlaneGather g;
   uintptr_t lowest = UINTPTR_MAX;
-  for (const std::vector<float>& d : planes)
+  for (const auto& d : planes)
     if (!d.empty()) lowest = std::min(lowest, reinterpret_cast<uintptr_t>(d.data()));
   if (lowest == UINTPTR_MAX || planes.size() > 8) return g;
   g.ok = true;
@@ -37,8 +40,18 @@ PlaneGather plane_gather(const std::vector<std::vector<float>>& planes) {
   return g;
 }
 
+}  // namespace
+
+PlaneGather plane_gather(const std::vector<std::vector<float>>& planes) {
+  return gather_planes(planes);
+}
+
+PlaneGather plane_gather(const std::vector<LineAlignedFloats>& planes) {
+  return gather_planes(planes);
+}
+
 MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, const MapParams& p,
-                                  const std::vector<std::vector<float>>& face_depth) {
+                                  const std::vector<LineAlignedFloats>& face_depth) {
   SL_CHECK(layout.faces.size() <= 8);
   MapLookupConsts c;
   c.light = scene.light.position;

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/aligned_vector.h"
 #include "core/math.h"
 #include "core/scene.h"
 #include "techniques/light_faces.h"
@@ -44,7 +45,7 @@ struct MapLookupConsts {
 };
 
 MapLookupConsts map_lookup_consts(const Scene& scene, const FaceLayout& layout, const MapParams& p,
-                                  const std::vector<std::vector<float>>& face_depth);
+                                  const std::vector<LineAlignedFloats>& face_depth);
 
 // Receivers of 8 pixels. Inactive lanes (uncovered, facing away, outside the projector) carry
 // their final mask (1 uncovered, else 0) and texel kNoTexel.
@@ -81,6 +82,7 @@ struct PlaneGather {
   bool ok = false;
 };
 PlaneGather plane_gather(const std::vector<std::vector<float>>& planes);
+PlaneGather plane_gather(const std::vector<LineAlignedFloats>& planes);
 
 // The bilinear footprint of 8 receivers (bilinear_taps: texels (x0, y0) … (x0 + 1, y0 + 1)
 // clamped to the face, fractions fx, fy) and, for the active lanes, the 4 tap values of each of

@@ -46,7 +46,7 @@ void filter(const MapParams&, LightMap&) {}  // the stored distances are the map
 
 struct PcssContext {
   const FaceLayout& layout;
-  const std::vector<std::vector<float>>& dist;
+  const std::vector<LineAlignedFloats>& dist;
   PoissonDisk search, taps;
   double radius;       // light radius / far (normalised distance units)
   double search_near;  // nearest blocker searched for, × the receiver's distance

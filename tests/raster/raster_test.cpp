@@ -208,7 +208,7 @@ TEST(Raster, DepthIdenticalForAnyThreadCount) {
   Soup soup;
   for (int i = 0; i < 3 * 20000; ++i) soup.positions.push_back({u(rng), u(rng), u(rng) - 4.5f});
   for (uint32_t i = 0; i < soup.positions.size(); ++i) soup.indices.push_back(i);
-  std::vector<std::vector<float>> results;
+  std::vector<LineAlignedFloats> results;
   for (int threads : {1, 2, 7}) {
     set_thread_count(threads);
     DepthTarget depth;

@@ -224,7 +224,7 @@ TEST(FaceMaps, RenderedMinimumIsTheSmallestStoredDistance) {
         EXPECT_EQ(map.dist.min_distance[f], std::numeric_limits<float>::infinity());
         continue;
       }
-      const std::vector<float>& d = map.dist.distance[f];
+      const LineAlignedFloats& d = map.dist.distance[f];
       EXPECT_EQ(map.dist.min_distance[f], *std::min_element(d.begin(), d.end())) << f;
       finite += std::isfinite(map.dist.min_distance[f]);
     }

@@ -72,7 +72,7 @@ TEST(FilterResponse, CubeMapPcfWeightsOverAStepEdge) {
   ASSERT_EQ(map.layout.faces[0].width, res);
   // Every face is empty (+inf, lit) but for the occluded columns of face -Y, so taps that cross
   // into a neighbouring face (pcf 5 at sx 5.6 reads column 8) count as lit, as analysed.
-  map.dist.distance.assign(kCubeFaces, std::vector<float>(size_t(res * res), std::numeric_limits<float>::infinity()));
+  map.dist.distance.assign(kCubeFaces, LineAlignedFloats(size_t(res * res), std::numeric_limits<float>::infinity()));
   map.dist.rendered.assign(kCubeFaces, true);
   for (int y = 0; y < res; ++y)
     for (int x = 0; x < edge; ++x) map.dist.distance[face][size_t(y * res + x)] = 0.05f;
@@ -117,7 +117,7 @@ TEST(FilterResponse, FaceMapPcfWeightsOverAStepEdgeOnEveryLayout) {
       map.dist.distance.assign(nf, {});
       map.dist.rendered.assign(nf, false);
       map.dist.rendered[size_t(face)] = true;
-      std::vector<float>& d = map.dist.distance[size_t(face)];
+      LineAlignedFloats& d = map.dist.distance[size_t(face)];
       d.assign(f.texel_count(), std::numeric_limits<float>::infinity());
       for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < edge; ++x) d[size_t(y * f.width + x)] = 0.05f;
