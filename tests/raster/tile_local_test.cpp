@@ -28,12 +28,12 @@ struct PositionalEpilogue {
   }
 };
 
-// 400 random triangles in front of a 90° perspective camera (some crossing the near plane).
+// 4,000 random triangles in front of a 90° perspective camera (some crossing the near plane).
 std::vector<vec3> random_soup() {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> xy(-6.0f, 6.0f), z(-8.0f, 0.5f), d(-1.5f, 1.5f);
   std::vector<vec3> p;
-  for (int t = 0; t < 400; ++t) {
+  for (int t = 0; t < 4000; ++t) {
     const vec3 c(xy(rng), xy(rng), z(rng));
     for (int k = 0; k < 3; ++k) p.push_back(c + vec3(d(rng), d(rng), d(rng)));
   }
@@ -56,6 +56,7 @@ void expect_local_equals_in_place(int w, int h) {
     rasterize(views, vp, CullMode::None, w, h, in_place, b);
     // The conditions under which rasterize_frame takes the tile-local path.
     ASSERT_EQ(w % 16, 0);
+    ASSERT_GE(size_t(w) * size_t(h) * sizeof(float), kStreamedTargetBytes);
     ASSERT_EQ(reinterpret_cast<uintptr_t>(local.inv_w.data()) % 64, 0u);
     ASSERT_EQ(local.inv_w.size(), in_place.inv_w.size());
     size_t covered = 0;
@@ -69,13 +70,13 @@ void expect_local_equals_in_place(int w, int h) {
 }
 
 TEST(TileLocal, DepthEqualsTheInPlacePathBitForBit) {
-  expect_local_equals_in_place<DepthOnlyShader>(256, 192);  // whole 64 x 64 tiles
-  expect_local_equals_in_place<DepthOnlyShader>(144, 80);   // partial tiles: 16 and 16 wide/high
+  expect_local_equals_in_place<DepthOnlyShader>(2048, 1024);  // whole 64 x 64 tiles
+  expect_local_equals_in_place<DepthOnlyShader>(2064, 1040);  // partial tiles, 16 wide and high
 }
 
 TEST(TileLocal, TileEpilogueSeesEveryPixelAtItsOwnPosition) {
-  expect_local_equals_in_place<PositionalEpilogue>(256, 192);
-  expect_local_equals_in_place<PositionalEpilogue>(144, 80);
+  expect_local_equals_in_place<PositionalEpilogue>(2048, 1024);
+  expect_local_equals_in_place<PositionalEpilogue>(2064, 1040);
 }
 
 }  // namespace
