@@ -29,7 +29,7 @@ size_t floats_to_line(const float* dst, size_t n) {
 
 // Head and tail (partial lines) by memcpy; the lines between, 16 floats per store.
 SL_TARGET("avx512f") void stream_copy_avx512(const float* src, size_t n,
-                                                           float* dst) {
+                                             float* dst) {
   const size_t head = floats_to_line(dst, n);
   std::memcpy(dst, src, head * sizeof(float));
   size_t i = head;

@@ -24,6 +24,10 @@ struct Stat {
   double median, min, max;
 };
 
+Stat stat_of(const std::vector<double>& v) {
+  return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
+}
+
 template <class Fn>
 Stat time_it(int repeats, Fn&& fn) {
   fn();  // warm-up: first-touch allocation and thread start-up are not what is measured
@@ -33,7 +37,7 @@ Stat time_it(int repeats, Fn&& fn) {
     fn();
     t.push_back(ms_since(s));
   }
-  return {median(t), *std::min_element(t.begin(), t.end()), *std::max_element(t.begin(), t.end())};
+  return stat_of(t);
 }
 
 // One job's 1 -> n thread scaling: each repeat times the job at 1 thread, then at n, each after
@@ -56,10 +60,7 @@ Scaling time_scaling(int repeats, int n, Fn&& fn) {
     r.push_back(t1.back() / tn.back());
   }
   set_thread_count(n);
-  auto stat = [](const std::vector<double>& v) {
-    return Stat{median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
-  };
-  return {stat(t1), stat(tn), stat(r)};
+  return {stat_of(t1), stat_of(tn), stat_of(r)};
 }
 
 void print_scaling(const char* what, int n, const Scaling& s) {

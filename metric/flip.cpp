@@ -60,7 +60,7 @@ Lanes lanes_here() {
 
 #if defined(__x86_64__)
 SL_TARGET("avx512f,avx512dq") size_t power8(const double* x, const double* p,
-                                                          double p0, size_t n, double* out) {
+                                            double p0, size_t n, double* out) {
   size_t i = 0;
   const __m512d tiny = _mm512_set1_pd(0x1p-1000), zero = _mm512_setzero_pd(),
                 one = _mm512_set1_pd(1.0);
@@ -75,7 +75,7 @@ SL_TARGET("avx512f,avx512dq") size_t power8(const double* x, const double* p,
 }
 
 SL_TARGET("avx2") size_t power4(const double* x, const double* p, double p0, size_t n,
-                                              double* out) {
+                                double* out) {
   size_t i = 0;
   const __m256d tiny = _mm256_set1_pd(0x1p-1000), zero = _mm256_setzero_pd(),
                 one = _mm256_set1_pd(1.0);

@@ -40,29 +40,22 @@ std::vector<MeshView> scene_mesh_views(const Scene& scene) {
   });
   std::vector<MeshView> views;
   views.reserve(scene.meshes.size());
-  for (const Mesh& m : scene.meshes)
+  for (const Mesh& m : scene.meshes) {
     views.push_back({m.positions.data(), m.positions.size(), m.indices.data(), m.triangle_count()});
-  // A piece whose first position is NaN has NaN bounds (glm::min keeps its first argument
-  // against a NaN), which the combine would skip with the piece's other positions: any
-  // non-finite piece drops its mesh's bounds instead, as a NaN first position always did.
-  // Bounds only let the binner cull; without them nothing is culled wrongly.
-  std::vector<uint8_t> finite(scene.meshes.size(), 1);
-  for (size_t k = 0; k < pieces.size(); ++k) {
-    const Piece& pc = pieces[k];
-    MeshView& v = views[pc.mesh];
-    if (pc.begin == 0) {
-      v.lo = pc.lo;
-      v.hi = pc.hi;
-    } else {
-      v.lo = glm::min(v.lo, pc.lo);
-      v.hi = glm::max(v.hi, pc.hi);
-    }
-    if (!is_finite(pc.lo) || !is_finite(pc.hi)) finite[pc.mesh] = 0;
+    views.back().has_bounds = !m.positions.empty();
   }
   // A NaN/Inf vertex must only drop its own triangles (counted in the binner), never cull the
-  // whole mesh through a NaN bound.
-  for (size_t m = 0; m < views.size(); ++m)
-    views[m].has_bounds = !scene.meshes[m].positions.empty() && finite[m];
+  // whole mesh through a NaN bound. A piece whose first position is NaN has NaN bounds
+  // (glm::min keeps its first argument against a NaN), which the combine would skip with the
+  // piece's other positions: any non-finite piece drops its mesh's bounds instead, as a NaN
+  // first position always did. Bounds only let the binner cull; without them nothing is culled
+  // wrongly.
+  for (const Piece& pc : pieces) {
+    MeshView& v = views[pc.mesh];
+    v.lo = pc.begin == 0 ? pc.lo : glm::min(v.lo, pc.lo);
+    v.hi = pc.begin == 0 ? pc.hi : glm::max(v.hi, pc.hi);
+    v.has_bounds = v.has_bounds && is_finite(pc.lo) && is_finite(pc.hi);
+  }
   return views;
 }
 

@@ -56,7 +56,8 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
   // writes every entry, and zero-filling them first ran on this thread alone (room1m: 16 MB a
   // face, before any worker starts).
   std::vector<std::vector<vec4, DefaultInitAllocator<vec4>>> clip(meshes.size());
-  std::vector<std::vector<uint32_t, DefaultInitAllocator<uint32_t>>> outcode(meshes.size());  // per vertex, see vertex_outcode
+  // Per vertex, see vertex_outcode.
+  std::vector<std::vector<uint32_t, DefaultInitAllocator<uint32_t>>> outcode(meshes.size());
   std::vector<size_t> first_triangle(meshes.size() + 1, 0);
   std::vector<uint8_t> mesh_culled(meshes.size(), 0);
   for (size_t m = 0; m < meshes.size(); ++m) {

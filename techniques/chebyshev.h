@@ -47,7 +47,7 @@ inline void mixture_moments(const double w[4], const float* A, const float* B, d
 #if defined(__x86_64__)
 // bilinear_weights for 4 lanes in double (fx, fy already widened from float).
 SL_TARGET("avx2") inline void bilinear_weights4(__m256d fx, __m256d fy,
-                                                              __m256d w[4]) {
+                                                __m256d w[4]) {
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256d ox = _mm256_sub_pd(one, fx), oy = _mm256_sub_pd(one, fy);
   w[0] = _mm256_mul_pd(ox, oy);
@@ -58,7 +58,7 @@ SL_TARGET("avx2") inline void bilinear_weights4(__m256d fx, __m256d fy,
 
 // bilinear_weights for 8 lanes in double (AVX-512).
 SL_TARGET("avx512f") inline void bilinear_weights8(__m512d fx, __m512d fy,
-                                                                 __m512d w[4]) {
+                                                   __m512d w[4]) {
   const __m512d one = _mm512_set1_pd(1.0);
   const __m512d ox = _mm512_sub_pd(one, fx), oy = _mm512_sub_pd(one, fy);
   w[0] = _mm512_mul_pd(ox, oy);
@@ -85,8 +85,8 @@ SL_TARGET("avx2") inline __m256d mixture_variance4(const __m256d* w,
   return var;
 }
 SL_TARGET("avx2") inline void mixture_moments4(const __m256d* w, const __m256d* A,
-                                                             const __m256d* B, __m256d& mean,
-                                                             __m256d& var) {
+                                               const __m256d* B, __m256d& mean,
+                                               __m256d& var) {
   mean = mixture_mean4(w, A);
   var = mixture_variance4(w, A, B, mean);
 }

@@ -63,8 +63,8 @@ inline float esm_combine(float z00, float z10, float z01, float z11, float fx, f
 // b < a ? b : a, i.e. _mm256_min_ps(b, a)). The compiler left the plain loop scalar.
 #if defined(__x86_64__)
 SL_TARGET("avx2") void esm_combine8_avx2(const float (*z)[8], const float* fx,
-                                                       const float* fy, const float* ct,
-                                                       float* out) {
+                                         const float* fy, const float* ct,
+                                         float* out) {
   const __m256 vct = _mm256_loadu_ps(ct), one = _mm256_set1_ps(1.0f);
   __m256 e[4];
   for (int i = 0; i < 4; ++i) {

@@ -46,9 +46,9 @@ float row_min_scalar(const float* row, int x0, int x1) {
 // (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its bits. One
 // call per tile: per row, the call's own cost was a third of the loop's.
 SL_TARGET("avx2") float radial_tile_min_avx2(float* out, size_t stride, int x0,
-                                                           int x1, int y0, int y1, float u0,
-                                                           float du, float top, float dv,
-                                                           float inv_far) {
+                                             int x1, int y0, int y1, float u0,
+                                             float du, float top, float dv,
+                                             float inv_far) {
   // _mm256_min_ps(a, b) is a < b ? a : b per lane: with the new values as a, a NaN keeps b.
   __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   float tail_min = std::numeric_limits<float>::infinity();
@@ -85,7 +85,7 @@ SL_TARGET("avx2") float radial_tile_min_avx2(float* out, size_t stride, int x0,
 
 // paraboloid_row and row_min_scalar in one AVX2 loop (inv_far / row[x] per lane: its bits).
 SL_TARGET("avx2") float paraboloid_row_min_avx2(float* row, int x0, int x1,
-                                                              float inv_far) {
+                                                float inv_far) {
   __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   int x = x0;
   for (; x + 8 <= x1; x += 8) {

@@ -13,7 +13,9 @@
 namespace shadowlab {
 
 struct FaceDistances {
-  std::vector<LineAlignedFloats> distance;  // per face (64-byte aligned: raster/raster_types.h): texel_count() values, or empty if not rendered
+  // Per face: texel_count() values, or empty if not rendered; 64-byte aligned (the rasterizer
+  // streams whole lines into large faces: raster/rasterize_tile.h).
+  std::vector<LineAlignedFloats> distance;
   std::vector<bool> rendered;
   // Per face, when asked for: the smallest stored distance (+inf when it saw nothing, or was not
   // rendered), found in the tile epilogue's conversion loop (the ESM filter's shift). Empty

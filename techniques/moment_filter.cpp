@@ -215,7 +215,7 @@ SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double s
 // finite_dist (minps returns its second operand unless d < 1, NaN included); the AVX-512
 // conversion is the zero-masked form for GCC 12's sake (core/exp_log.h's exp_d8).
 SL_TARGET("avx512f") void esm_exp_row_avx512(const float* row, int w, double c,
-                                                           double d_min, double* out) {
+                                             double d_min, double* out) {
   const __m256 one = _mm256_set1_ps(1.0f);
   const __m512d vc = _mm512_set1_pd(c), vmin = _mm512_set1_pd(d_min);
   int x = 0;
@@ -227,7 +227,7 @@ SL_TARGET("avx512f") void esm_exp_row_avx512(const float* row, int w, double c,
 }
 
 SL_TARGET("avx2") void esm_exp_row_avx2(const float* row, int w, double c,
-                                                      double d_min, double* out) {
+                                        double d_min, double* out) {
   const __m128 one = _mm_set1_ps(1.0f);
   const __m256d vc = _mm256_set1_pd(c), vmin = _mm256_set1_pd(d_min);
   int x = 0;
@@ -253,7 +253,7 @@ SL_ROW_CLONES void warp_row_f_scalar(const float* row, int w, double c, double s
 }
 
 SL_TARGET("avx512f") void warp_row_f_avx512(const float* row, int w, double c,
-                                                          double sign, float* v) {
+                                            double sign, float* v) {
   const __m512 one = _mm512_set1_ps(1.0f), sc = _mm512_set1_ps(float(sign * c));
   const __m512 fs = _mm512_set1_ps(float(sign));
   int x = 0;
@@ -267,7 +267,7 @@ SL_TARGET("avx512f") void warp_row_f_avx512(const float* row, int w, double c,
 }
 
 SL_TARGET("avx2") void warp_row_f_avx2(const float* row, int w, double c,
-                                                     double sign, float* v) {
+                                       double sign, float* v) {
   const __m256 one = _mm256_set1_ps(1.0f), sc = _mm256_set1_ps(float(sign * c));
   const __m256 fs = _mm256_set1_ps(float(sign));
   int x = 0;
@@ -472,8 +472,8 @@ SL_ROW_CLONES void esm_out_k_scalar(const double* const* rows, int w, double inv
 // scalar kernel. The AVX-512 conversion is the zero-masked form (as in esm_exp_row_avx512).
 template <int K>
 SL_TARGET("avx512f") void esm_out_k_avx512(const double* const* rows, int w,
-                                                         double inv, double c, double d_min,
-                                                         float* out) {
+                                           double inv, double c, double d_min,
+                                           float* out) {
   const double* r[K];
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   const __m512d vinv = _mm512_set1_pd(inv), cd = _mm512_set1_pd(c * d_min);
@@ -490,8 +490,8 @@ SL_TARGET("avx512f") void esm_out_k_avx512(const double* const* rows, int w,
 
 template <int K>
 SL_TARGET("avx2") void esm_out_k_avx2(const double* const* rows, int w,
-                                                    double inv, double c, double d_min,
-                                                    float* out) {
+                                      double inv, double c, double d_min,
+                                      float* out) {
   const double* r[K];
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   const __m256d vinv = _mm256_set1_pd(inv), cd = _mm256_set1_pd(c * d_min);
@@ -571,8 +571,8 @@ SL_TARGET("avx512f") inline __m512d sum_rows8(const double* const* rows, int x) 
 // BitForBit). Texels before the first line and after the last whole 8 go one by one.
 template <int K>
 SL_TARGET("avx512f") void vsm_out_interleaved_avx512(const double* const* rows,
-                                                                   int w, double inv,
-                                                                   float* out) {
+                                                     int w, double inv,
+                                                     float* out) {
   const int head = texels_to_line(out, 2, w);
   int x = 0;
   for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
@@ -596,7 +596,7 @@ SL_TARGET("avx512f") void vsm_out_interleaved_avx512(const double* const* rows,
 // (before it, their rows went through vsm_out_k into scratch and interleave_row, two passes).
 template <int K>
 SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w,
-                                                              double inv, float* out) {
+                                                double inv, float* out) {
   const int head = texels_to_line(out, 2, w);
   int x = 0;
   for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
@@ -633,8 +633,8 @@ SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w
 // first 64-byte line and after the last whole 16 go one by one in the same operations.
 template <int K>
 SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
-                                                                   int w, float inv,
-                                                                   float* out) {
+                                                     int w, float inv,
+                                                     float* out) {
   // Non-temporal stores need aligned addresses: a row that cannot reach a line on a texel
   // boundary (never for the map's 16-byte aligned storage) goes one texel at a time.
   const int head = texels_to_line(out, 4, w, w);
@@ -681,7 +681,7 @@ SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
 // interleave4_row and the stream copy, three passes).
 template <int K>
 SL_TARGET("avx2") void msm_out_interleaved_avx2(const float* const* rows, int w,
-                                                              float inv, float* out) {
+                                                float inv, float* out) {
   const int head = texels_to_line(out, 4, w, w);
   int x = 0;
   for (; x < head; ++x) msm_out_texel<K>(rows, x, inv, out);

@@ -134,9 +134,9 @@ SL_TARGET("avx2") __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
 
 // The 8 lanes of a batch: two halves of vsm_value4.
 SL_TARGET("avx2") void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
-                                                    const float* fx, const float* fy,
-                                                    const float* depth, const int32_t* active,
-                                                    float* out) {
+                                      const float* fx, const float* fy,
+                                      const float* depth, const int32_t* active,
+                                      float* out) {
   __m256 M4[4];
   for (int i = 0; i < 4; ++i) M4[i] = _mm256_load_ps(v[2][i]);
   for (int half = 0; half < 2; ++half) {

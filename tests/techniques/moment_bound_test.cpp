@@ -215,7 +215,7 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
 #if defined(__x86_64__)
 // The kernels on lanes m[k][lane] (moment k + 1), z[lane].
 SL_TARGET("avx2") void intensity4(const double (*m)[32], const double* z,
-                                                double alpha, bool hausdorff, double* out) {
+                                  double alpha, bool hausdorff, double* out) {
   __m256d mv[1][4], g;
   for (int k = 0; k < 4; ++k) mv[0][k] = _mm256_loadu_pd(m[k]);
   const __m256d zv = _mm256_loadu_pd(z);
@@ -224,7 +224,7 @@ SL_TARGET("avx2") void intensity4(const double (*m)[32], const double* z,
 }
 // Two groups of 4 side by side (msm_intensity4n<2>, the AVX2 batch's halves).
 SL_TARGET("avx2") void intensity4x2(const double (*m)[32], const double* z,
-                                                  double alpha, bool hausdorff, double* out) {
+                                    double alpha, bool hausdorff, double* out) {
   __m256d mv[2][4], zv[2], g[2];
   for (int h = 0; h < 2; ++h) {
     for (int k = 0; k < 4; ++k) mv[h][k] = _mm256_loadu_pd(m[k] + 4 * h);
@@ -234,8 +234,8 @@ SL_TARGET("avx2") void intensity4x2(const double (*m)[32], const double* z,
   for (int h = 0; h < 2; ++h) _mm256_storeu_pd(out + 4 * h, g[h]);
 }
 SL_TARGET("avx512f,avx512dq") void intensity8(const double (*m)[32],
-                                                            const double* z, double alpha,
-                                                            bool hausdorff, double* out) {
+                                              const double* z, double alpha,
+                                              bool hausdorff, double* out) {
   __m512d mv[1][4], g;
   for (int k = 0; k < 4; ++k) mv[0][k] = _mm512_loadu_pd(m[k]);
   const __m512d zv = _mm512_loadu_pd(z);
@@ -244,8 +244,8 @@ SL_TARGET("avx512f,avx512dq") void intensity8(const double (*m)[32],
 }
 // Four groups of 8 side by side (msm_intensity8n<4>, the MSM lookup's groups of batches).
 SL_TARGET("avx512f,avx512dq") void intensity8x4(const double (*m)[32],
-                                                              const double* z, double alpha,
-                                                              bool hausdorff, double* out) {
+                                                const double* z, double alpha,
+                                                bool hausdorff, double* out) {
   __m512d mv[4][4], zv[4], g[4];
   for (int h = 0; h < 4; ++h) {
     for (int k = 0; k < 4; ++k) mv[h][k] = _mm512_loadu_pd(m[k] + 8 * h);
