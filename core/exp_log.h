@@ -1,12 +1,14 @@
 #pragma once
-// Branch-free exp and log in double, and exp in float, for loops the compiler vectorizes (the
-// ESM filter runs one exp and one log per texel, its lookup four exps per pixel; glibc's scalar
-// calls were most of their time). Only IEEE multiply, add,
-// subtract and divide, integer adds and shifts on the bit patterns and (exp_d) a 16-entry table
-// read, in a fixed order: a loop of them compiled for AVX2 gives the same bits as the scalar
-// calls, on any x86-64 (no libm, no FMA: the build has -ffp-contract=off). Accuracy: within
-// 2 ulp of the exact value on the ranges below (tests/core/exp_log_test.cpp checks against long
-// double).
+// Branch-free exp and log in double, exp in float, and the float-precision pair exp_wide /
+// log_wide whose range is double's, for loops the compiler vectorizes and for kernels written
+// with intrinsics (the ESM filter runs one exp and one log per texel, its lookup four exps per
+// pixel; glibc's scalar calls were most of their time). Only IEEE multiply, add, subtract and
+// divide, float <-> double conversions, integer adds and shifts on the bit patterns and (exp_d)
+// a 16-entry table read, in a fixed order: a loop of them compiled for AVX2 or AVX-512 gives the
+// same bits as the scalar calls, on any x86-64 (no libm, no FMA: the build has
+// -ffp-contract=off). Accuracy against long double (tests/core/exp_log_test.cpp): exp_d, log_d
+// and exp_f within 2 ulp of the exact value on the ranges below; exp_wide within 3e-7 relative,
+// log_wide within 2e-7 absolute.
 #include <bit>
 #include <cstdint>
 
@@ -106,12 +108,13 @@ inline double log_d(double x) {
   return (e * kLn2Hi + kLnStepHi[j]) + (ln_m + (e * kLn2Lo + kLnStepLo[j]));
 }
 
-// e^x in float for x in [-87, 88] (the ESM lookup clamps its exponents to [-87, 80]): within
-// 2 ulp of the exact value; 8 lanes per AVX2 instruction where double gives 4.
-inline float exp_f(float x) {
+// exp_f's steps before the scale: e^x = p · 2^ni with p = e^r in [0.70, 1.42], r = x − ni·ln2.
+// kLn2Hi has 9 significant bits, so ni·kLn2Hi is exact for |ni| < 2^15 and x − ni·kLn2Hi is
+// exact (Sterbenz): the reduction holds for |x| up to ~22,000, not only float's range.
+inline float exp_f_poly(float x, int32_t& ni) {
   constexpr float kLog2e = 1.44269504f;
   constexpr float kShifter = 12582912.0f;  // 1.5 · 2^23
-  constexpr float kLn2Hi = 0.693359375f;   // 0x3F318000: n·kLn2Hi exact for |n| < 2^8
+  constexpr float kLn2Hi = 0.693359375f;   // 0x3F318000
   constexpr float kLn2Lo = -2.12194440e-4f;
   const float t = x * kLog2e + kShifter;
   const float n = t - kShifter;
@@ -125,8 +128,52 @@ inline float exp_f(float x) {
   p = p * r + 0.5f;
   p = p * r + 1.0f;
   p = p * r + 1.0f;
-  const int32_t ni = std::bit_cast<int32_t>(t) - std::bit_cast<int32_t>(kShifter);
+  ni = std::bit_cast<int32_t>(t) - std::bit_cast<int32_t>(kShifter);
+  return p;
+}
+
+// e^x in float for x in [-87, 88] (the ESM lookup clamps its exponents to [-87, 80]): within
+// 2 ulp of the exact value; 8 lanes per AVX2 instruction where double gives 4.
+inline float exp_f(float x) {
+  int32_t ni;
+  const float p = exp_f_poly(x, ni);
   return std::bit_cast<float>(std::bit_cast<int32_t>(p) + (ni << 23));
+}
+
+// e^x for float x in [-708, 708] as a double: exp_f's float steps, then p · 2^ni in double, whose
+// range holds e^700 (float's ends at e^88.7). Within 2.5 float ulps (3e-7) of e^x
+// (tests/core/exp_log_test.cpp). The ESM filter's exponentials (README "Techniques", ESM): its
+// terms e^(c·(d − d_min)) reach e^700, and float precision is what its float map keeps.
+inline double exp_wide(float x) {
+  int32_t ni;
+  const float p = exp_f_poly(x, ni);
+  return std::bit_cast<double>(std::bit_cast<int64_t>(double(p)) + (int64_t(ni) << 52));
+}
+
+// ln x for positive normal double x to float precision, as a double: within 2e-7 of ln x
+// (absolute; tests/core/exp_log_test.cpp). x = 2^e · m exactly, m in [0.75, 1.5) (mantissas
+// from 1.5 up taken to the next octave, as log_d does, so that no sum cancels); then ln m in
+// float: m rounded to float, s = (m − 1)/(m + 1) (|s| <= 0.2), 2·atanh(s) to s^9 (truncation
+// below 4e-9), and e·ln2 + ln m in double. The ESM filter's logarithms (README "Techniques",
+// ESM): its arguments lie in [1, e^700], beyond float's range, and it stores a float.
+inline double log_wide(double x) {
+  const uint64_t bits = std::bit_cast<uint64_t>(x);
+  const uint64_t up = (bits >> 51) & 1;  // mantissa >= 1.5
+  const double m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFULL) |
+                                         (0x3FF0000000000000ULL - (up << 52)));
+  // e exactly, as log_d forms it: (2^52 + n) − (2^52 + 1023).
+  const uint64_t n = (bits >> 52) + up;
+  const double e = std::bit_cast<double>(0x4330000000000000ULL | n) - (4503599627370496.0 + 1023.0);
+  const float mf = float(m);
+  const float s = (mf - 1.0f) / (mf + 1.0f);
+  const float s2 = s * s;
+  float q = 1.0f / 9.0f;
+  q = q * s2 + 1.0f / 7.0f;
+  q = q * s2 + 1.0f / 5.0f;
+  q = q * s2 + 1.0f / 3.0f;
+  const float two_s = s + s;
+  const float ln_m = two_s + two_s * (s2 * q);
+  return e * 0.6931471805599453 + double(ln_m);
 }
 
 #if defined(__x86_64__)
@@ -178,7 +225,7 @@ SL_TARGET("avx512f") inline __m512d exp_d8(__m512d x) {
 // exp_f of 8 floats (AVX2) and of 16 (AVX-512): exp_f's operations in exp_f's order, so each
 // lane gets exp_f's bits (tests/core/exp_log_test.cpp), for the EVSM filter's rows and the
 // ESM lookup's AVX2 batch.
-SL_TARGET("avx2") inline __m256 exp_f8(__m256 x) {
+SL_TARGET("avx2") inline __m256 exp_f8_poly(__m256 x, __m256i& ni) {
   const __m256 shifter = _mm256_set1_ps(12582912.0f);
   const __m256 t = _mm256_add_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504f)), shifter);
   const __m256 n = _mm256_sub_ps(t, shifter);
@@ -187,11 +234,17 @@ SL_TARGET("avx2") inline __m256 exp_f8(__m256 x) {
   __m256 p = _mm256_set1_ps(1.0f / 5040.0f);
   for (const float c : {1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f, 1.0f / 6.0f, 0.5f, 1.0f, 1.0f})
     p = _mm256_add_ps(_mm256_mul_ps(p, r), _mm256_set1_ps(c));
-  const __m256i ni = _mm256_sub_epi32(_mm256_castps_si256(t), _mm256_castps_si256(shifter));
+  ni = _mm256_sub_epi32(_mm256_castps_si256(t), _mm256_castps_si256(shifter));
+  return p;
+}
+
+SL_TARGET("avx2") inline __m256 exp_f8(__m256 x) {
+  __m256i ni;
+  const __m256 p = exp_f8_poly(x, ni);
   return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(p), _mm256_slli_epi32(ni, 23)));
 }
 
-SL_TARGET("avx512f") inline __m512 exp_f16(__m512 x) {
+SL_TARGET("avx512f") inline __m512 exp_f16_poly(__m512 x, __m512i& ni) {
   const __m512 shifter = _mm512_set1_ps(12582912.0f);
   const __m512 t = _mm512_add_ps(_mm512_mul_ps(x, _mm512_set1_ps(1.44269504f)), shifter);
   const __m512 n = _mm512_sub_ps(t, shifter);
@@ -200,10 +253,61 @@ SL_TARGET("avx512f") inline __m512 exp_f16(__m512 x) {
   __m512 p = _mm512_set1_ps(1.0f / 5040.0f);
   for (const float c : {1.0f / 720.0f, 1.0f / 120.0f, 1.0f / 24.0f, 1.0f / 6.0f, 0.5f, 1.0f, 1.0f})
     p = _mm512_add_ps(_mm512_mul_ps(p, r), _mm512_set1_ps(c));
-  const __m512i ni = _mm512_sub_epi32(_mm512_castps_si512(t), _mm512_castps_si512(shifter));
+  ni = _mm512_sub_epi32(_mm512_castps_si512(t), _mm512_castps_si512(shifter));
+  return p;
+}
+
+SL_TARGET("avx512f") inline __m512 exp_f16(__m512 x) {
+  __m512i ni;
+  const __m512 p = exp_f16_poly(x, ni);
   // The zero-masked shift with every lane on, as in exp_d8.
   const __m512i q = _mm512_maskz_slli_epi32(0xFFFF, ni, 23);
   return _mm512_castsi512_ps(_mm512_add_epi32(_mm512_castps_si512(p), q));
+}
+
+// exp_wide of 8 floats (AVX2) and of 16 (AVX-512), lanes 0..3 / 0..7 into lo and the rest into
+// hi: exp_f's float steps, then p widened and 2^ni added to its exponent in 64-bit lanes, so each
+// lane gets exp_wide's bits (tests/core/exp_log_test.cpp).
+// p · 2^n for floats p and int32 n, widened: n shifted into the double's exponent field.
+SL_TARGET("avx2") inline __m256d scale_wide4(__m128 p, __m128i n) {
+  const __m256i q = _mm256_slli_epi64(_mm256_cvtepi32_epi64(n), 52);
+  return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(_mm256_cvtps_pd(p)), q));
+}
+
+SL_TARGET("avx2") inline void exp_wide8(__m256 x, __m256d& lo, __m256d& hi) {
+  __m256i ni;
+  const __m256 p = exp_f8_poly(x, ni);
+  lo = scale_wide4(_mm256_castps256_ps128(p), _mm256_castsi256_si128(ni));
+  hi = scale_wide4(_mm256_extractf128_ps(p, 1), _mm256_extracti128_si256(ni, 1));
+}
+
+// Halves of a 512-bit vector and two halves joined, in the zero-masked forms with every lane on:
+// GCC 12's unmasked extracts and inserts (and the casts built on them) pass an undefined source
+// that -Wmaybe-uninitialized reports, as in exp_d8.
+SL_TARGET("avx512f") inline __m256 half_ps(__m512 v, int hi) {
+  return _mm256_castpd_ps(hi ? _mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(v), 1)
+                             : _mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(v), 0));
+}
+SL_TARGET("avx512f") inline __m256i half_si(__m512i v, int hi) {
+  return hi ? _mm512_maskz_extracti64x4_epi64(0xF, v, 1)
+            : _mm512_maskz_extracti64x4_epi64(0xF, v, 0);
+}
+SL_TARGET("avx512f") inline __m512 join_ps(__m256 lo, __m256 hi) {
+  return _mm512_castpd_ps(_mm512_maskz_insertf64x4(
+      0xFF, _mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
+}
+
+SL_TARGET("avx512f") inline __m512d scale_wide8(__m256 p, __m256i n) {
+  const __m512i q = _mm512_maskz_slli_epi64(0xFF, _mm512_maskz_cvtepi32_epi64(0xFF, n), 52);
+  return _mm512_castsi512_pd(
+      _mm512_add_epi64(_mm512_castpd_si512(_mm512_maskz_cvtps_pd(0xFF, p)), q));
+}
+
+SL_TARGET("avx512f") inline void exp_wide16(__m512 x, __m512d& lo, __m512d& hi) {
+  __m512i ni;
+  const __m512 p = exp_f16_poly(x, ni);
+  lo = scale_wide8(half_ps(p, 0), half_si(ni, 0));
+  hi = scale_wide8(half_ps(p, 1), half_si(ni, 1));
 }
 
 // log_d of 4 and of 8 doubles, as exp_d4 and exp_d8 are to exp_d (tables by gathers, or by
@@ -265,6 +369,77 @@ SL_TARGET("avx512f") inline __m512d log_d8(__m512d x) {
   const __m512d a = _mm512_add_pd(_mm512_mul_pd(e, _mm512_set1_pd(0.693147180369123816490)), hi);
   const __m512d b = _mm512_add_pd(_mm512_mul_pd(e, _mm512_set1_pd(1.90821492927058770002e-10)), lo);
   return _mm512_add_pd(a, _mm512_add_pd(ln_m, b));
+}
+
+// log_wide of 8 doubles (AVX2: two vectors of 4) and of 16 (AVX-512: two of 8), lane for lane
+// into lo and hi: log_wide's exact split of each double into e and m, the m's rounded to floats
+// and their ln taken 8 or 16 at a time in log_wide's order, then e·ln2 + ln m in double, so each
+// lane gets log_wide's bits (tests/core/exp_log_test.cpp).
+// log_wide's split of 4 (8) doubles: e, and m rounded to float.
+SL_TARGET("avx2") inline __m128 log_wide_m4(__m256d x, __m256d& e) {
+  const __m256i bits = _mm256_castpd_si256(x);
+  const __m256i up = _mm256_and_si256(_mm256_srli_epi64(bits, 51), _mm256_set1_epi64x(1));
+  const __m256i m_exp =
+      _mm256_sub_epi64(_mm256_set1_epi64x(0x3FF0000000000000LL), _mm256_slli_epi64(up, 52));
+  const __m256i mant = _mm256_and_si256(bits, _mm256_set1_epi64x(0x000FFFFFFFFFFFFFLL));
+  const __m256d m = _mm256_castsi256_pd(_mm256_or_si256(mant, m_exp));
+  const __m256i n = _mm256_add_epi64(_mm256_srli_epi64(bits, 52), up);
+  const __m256i e_bits = _mm256_or_si256(_mm256_set1_epi64x(0x4330000000000000LL), n);
+  e = _mm256_sub_pd(_mm256_castsi256_pd(e_bits), _mm256_set1_pd(4503599627370496.0 + 1023.0));
+  return _mm256_cvtpd_ps(m);
+}
+
+SL_TARGET("avx2") inline __m256 ln_m8(__m256 mf) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 s = _mm256_div_ps(_mm256_sub_ps(mf, one), _mm256_add_ps(mf, one));
+  const __m256 s2 = _mm256_mul_ps(s, s);
+  __m256 q = _mm256_set1_ps(1.0f / 9.0f);
+  for (const float k : {1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f})
+    q = _mm256_add_ps(_mm256_mul_ps(q, s2), _mm256_set1_ps(k));
+  const __m256 two_s = _mm256_add_ps(s, s);
+  return _mm256_add_ps(two_s, _mm256_mul_ps(two_s, _mm256_mul_ps(s2, q)));
+}
+
+SL_TARGET("avx2") inline void log_wide8(__m256d x_lo, __m256d x_hi, __m256d& lo, __m256d& hi) {
+  __m256d e_lo, e_hi;
+  const __m128 m_lo = log_wide_m4(x_lo, e_lo), m_hi = log_wide_m4(x_hi, e_hi);
+  const __m256 ln_m = ln_m8(_mm256_set_m128(m_hi, m_lo));
+  const __m256d ln2 = _mm256_set1_pd(0.6931471805599453);
+  lo = _mm256_add_pd(_mm256_mul_pd(e_lo, ln2), _mm256_cvtps_pd(_mm256_castps256_ps128(ln_m)));
+  hi = _mm256_add_pd(_mm256_mul_pd(e_hi, ln2), _mm256_cvtps_pd(_mm256_extractf128_ps(ln_m, 1)));
+}
+
+SL_TARGET("avx512f") inline __m256 log_wide_m8(__m512d x, __m512d& e) {
+  const __m512i bits = _mm512_castpd_si512(x);
+  // Zero-masked shifts with every lane on, as in exp_d8.
+  const __m512i up =
+      _mm512_and_si512(_mm512_maskz_srli_epi64(0xFF, bits, 51), _mm512_set1_epi64(1));
+  const __m512i m_exp = _mm512_sub_epi64(_mm512_set1_epi64(0x3FF0000000000000LL),
+                                         _mm512_maskz_slli_epi64(0xFF, up, 52));
+  const __m512i mant = _mm512_and_si512(bits, _mm512_set1_epi64(0x000FFFFFFFFFFFFFLL));
+  const __m512d m = _mm512_castsi512_pd(_mm512_or_si512(mant, m_exp));
+  const __m512i n = _mm512_add_epi64(_mm512_maskz_srli_epi64(0xFF, bits, 52), up);
+  const __m512i e_bits = _mm512_or_si512(_mm512_set1_epi64(0x4330000000000000LL), n);
+  e = _mm512_sub_pd(_mm512_castsi512_pd(e_bits), _mm512_set1_pd(4503599627370496.0 + 1023.0));
+  return _mm512_maskz_cvtpd_ps(0xFF, m);  // zero-masked form: exp_d8's GCC 12 note
+}
+
+SL_TARGET("avx512f") inline void log_wide16(__m512d x_lo, __m512d x_hi, __m512d& lo,
+                                            __m512d& hi) {
+  __m512d e_lo, e_hi;
+  const __m256 m_lo = log_wide_m8(x_lo, e_lo), m_hi = log_wide_m8(x_hi, e_hi);
+  const __m512 mf = join_ps(m_lo, m_hi);
+  const __m512 one = _mm512_set1_ps(1.0f);
+  const __m512 s = _mm512_div_ps(_mm512_sub_ps(mf, one), _mm512_add_ps(mf, one));
+  const __m512 s2 = _mm512_mul_ps(s, s);
+  __m512 q = _mm512_set1_ps(1.0f / 9.0f);
+  for (const float k : {1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f})
+    q = _mm512_add_ps(_mm512_mul_ps(q, s2), _mm512_set1_ps(k));
+  const __m512 two_s = _mm512_add_ps(s, s);
+  const __m512 ln_m = _mm512_add_ps(two_s, _mm512_mul_ps(two_s, _mm512_mul_ps(s2, q)));
+  const __m512d ln2 = _mm512_set1_pd(0.6931471805599453);
+  lo = _mm512_add_pd(_mm512_mul_pd(e_lo, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 0)));
+  hi = _mm512_add_pd(_mm512_mul_pd(e_hi, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 1)));
 }
 #endif
 

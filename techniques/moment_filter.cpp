@@ -173,8 +173,9 @@ SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, 
 }
 
 // The exp and log kernels a filter's rows use, chosen once per filter (core/cpu_features.h; a
-// getenv per row would cost more than some rows): exp_d8 and log_d8 (AVX-512), exp_d4 and
-// log_d4 (AVX2) or the scalar exp_d and log_d, which give the same bits (core/exp_log.h). The
+// getenv per row would cost more than some rows): ESM's exp_wide16 and log_wide16 (AVX-512),
+// exp_wide8 and log_wide8 (AVX2) or the scalar exp_wide and log_wide, EVSM's exp_f16, exp_f8 or
+// exp_f, each set giving the same bits (core/exp_log.h). The
 // oracles (fixed_kernels false) take the scalar ones, so the tests' comparisons of the two also
 // compare the kernels bit for bit.
 enum class ExpPath { scalar, avx2, avx512 };
@@ -185,12 +186,15 @@ ExpPath exp_path(bool fast) {
   return use_avx2_paths() ? ExpPath::avx2 : ExpPath::scalar;
 }
 
-// ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist. Scalar: two
-// loops (with the float → double conversion in the same loop the compiler kept it scalar).
+// ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist, by exp_wide of
+// the exponent rounded once to float: c·(d − d_min) in double (d − d_min is exact there), then
+// float. Why float precision is enough here: README "Techniques", ESM.
+inline float esm_exponent(float d, double c, double d_min) {
+  return float(c * (double(d) - d_min));
+}
 SL_ROW_CLONES void esm_exp_row_scalar(const float* row, int w, double c, double d_min,
                                       double* out) {
-  for (int x = 0; x < w; ++x) out[x] = double(finite_dist_bits(row[x]));
-  for (int x = 0; x < w; ++x) out[x] = exp_d(c * (out[x] - d_min));
+  for (int x = 0; x < w; ++x) out[x] = exp_wide(esm_exponent(finite_dist_bits(row[x]), c, d_min));
 }
 
 // EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v², the warp in
@@ -211,19 +215,33 @@ SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double s
 }
 
 #if defined(__x86_64__)
-// The same operations, 8 and 4 lanes at a time, the tail by the scalar rows. min(d, 1) is
-// finite_dist (minps returns its second operand unless d < 1, NaN included); the AVX-512
-// conversion is the zero-masked form for GCC 12's sake (core/exp_log.h's exp_d8).
+// The same operations, 16 and 8 lanes at a time, the tail by the scalar rows. min(d, 1) is
+// finite_dist (minps returns its second operand unless d < 1, NaN included); the exponents are
+// formed in double 8 (4) at a time and rounded to float as esm_exponent does. The AVX-512
+// conversions are the zero-masked forms for GCC 12's sake (core/exp_log.h's exp_d8).
+SL_TARGET("avx512f") inline __m256 esm_exponent8(__m256 d, __m512d vc, __m512d vmin) {
+  const __m512d dd = _mm512_maskz_cvtps_pd(0xFF, d);
+  return _mm512_maskz_cvtpd_ps(0xFF, _mm512_mul_pd(vc, _mm512_sub_pd(dd, vmin)));
+}
+
 SL_TARGET("avx512f") void esm_exp_row_avx512(const float* row, int w, double c,
                                              double d_min, double* out) {
   const __m256 one = _mm256_set1_ps(1.0f);
   const __m512d vc = _mm512_set1_pd(c), vmin = _mm512_set1_pd(d_min);
   int x = 0;
-  for (; x + 8 <= w; x += 8) {
-    const __m512d d = _mm512_maskz_cvtps_pd(0xFF, _mm256_min_ps(_mm256_loadu_ps(row + x), one));
-    _mm512_storeu_pd(out + x, exp_d8(_mm512_mul_pd(vc, _mm512_sub_pd(d, vmin))));
+  for (; x + 16 <= w; x += 16) {
+    const __m256 lo = esm_exponent8(_mm256_min_ps(_mm256_loadu_ps(row + x), one), vc, vmin);
+    const __m256 hi = esm_exponent8(_mm256_min_ps(_mm256_loadu_ps(row + x + 8), one), vc, vmin);
+    __m512d e_lo, e_hi;
+    exp_wide16(join_ps(lo, hi), e_lo, e_hi);
+    _mm512_storeu_pd(out + x, e_lo);
+    _mm512_storeu_pd(out + x + 8, e_hi);
   }
   esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
+}
+
+SL_TARGET("avx2") inline __m128 esm_exponent4(__m128 d, __m256d vc, __m256d vmin) {
+  return _mm256_cvtpd_ps(_mm256_mul_pd(vc, _mm256_sub_pd(_mm256_cvtps_pd(d), vmin)));
 }
 
 SL_TARGET("avx2") void esm_exp_row_avx2(const float* row, int w, double c,
@@ -231,9 +249,13 @@ SL_TARGET("avx2") void esm_exp_row_avx2(const float* row, int w, double c,
   const __m128 one = _mm_set1_ps(1.0f);
   const __m256d vc = _mm256_set1_pd(c), vmin = _mm256_set1_pd(d_min);
   int x = 0;
-  for (; x + 4 <= w; x += 4) {
-    const __m256d d = _mm256_cvtps_pd(_mm_min_ps(_mm_loadu_ps(row + x), one));
-    _mm256_storeu_pd(out + x, exp_d4(_mm256_mul_pd(vc, _mm256_sub_pd(d, vmin))));
+  for (; x + 8 <= w; x += 8) {
+    const __m128 lo = esm_exponent4(_mm_min_ps(_mm_loadu_ps(row + x), one), vc, vmin);
+    const __m128 hi = esm_exponent4(_mm_min_ps(_mm_loadu_ps(row + x + 4), one), vc, vmin);
+    __m256d e_lo, e_hi;
+    exp_wide8(_mm256_set_m128(hi, lo), e_lo, e_hi);
+    _mm256_storeu_pd(out + x, e_lo);
+    _mm256_storeu_pd(out + x + 4, e_hi);
   }
   esm_exp_row_scalar(row + x, w - x, c, d_min, out + x);
 }
@@ -311,7 +333,7 @@ SL_ROW_CLONES void power_row(const float* row, int w, size_t stride, float* p) {
 // ESM's occluder term of one filtered row: c·d_min + ln(filtered).
 SL_ROW_CLONES void esm_log_row(const double* filtered, int w, double c, double d_min,
                               float* out) {
-  for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_d(filtered[x]));
+  for (int x = 0; x < w; ++x) out[x] = float(c * d_min + log_wide(filtered[x]));
 }
 
 // Output columns [x0, x0 + n) of a row and the input columns their k-wide windows read:
@@ -463,13 +485,21 @@ SL_ROW_CLONES void esm_out_k_scalar(const double* const* rows, int w, double inv
     double a = r[0][x];
     for (int j = 1; j < K; ++j) a += r[j][x];
     a *= inv;
-    out[x] = float(c * d_min + log_d(a));
+    out[x] = float(c * d_min + log_wide(a));
   }
 }
 
 #if defined(__x86_64__)
-// The same sums and log_d8 / log_d4 (core/exp_log.h), 8 and 4 lanes at a time; the tail by the
-// scalar kernel. The AVX-512 conversion is the zero-masked form (as in esm_exp_row_avx512).
+// The same sums and log_wide16 / log_wide8 (core/exp_log.h), 16 and 8 lanes at a time; the
+// tail by the scalar kernel. The AVX-512 conversions are the zero-masked forms (as in
+// esm_exp_row_avx512).
+template <int K>
+SL_TARGET("avx512f") inline __m512d esm_window8(const double* const* r, int x, __m512d vinv) {
+  __m512d a = _mm512_loadu_pd(r[0] + x);
+  for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(r[j] + x));
+  return _mm512_mul_pd(a, vinv);
+}
+
 template <int K>
 SL_TARGET("avx512f") void esm_out_k_avx512(const double* const* rows, int w,
                                            double inv, double c, double d_min,
@@ -478,14 +508,21 @@ SL_TARGET("avx512f") void esm_out_k_avx512(const double* const* rows, int w,
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   const __m512d vinv = _mm512_set1_pd(inv), cd = _mm512_set1_pd(c * d_min);
   int x = 0;
-  for (; x + 8 <= w; x += 8) {
-    __m512d a = _mm512_loadu_pd(r[0] + x);
-    for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(r[j] + x));
-    a = _mm512_mul_pd(a, vinv);
-    _mm256_storeu_ps(out + x, _mm512_maskz_cvtpd_ps(0xFF, _mm512_add_pd(cd, log_d8(a))));
+  for (; x + 16 <= w; x += 16) {
+    __m512d lo, hi;
+    log_wide16(esm_window8<K>(r, x, vinv), esm_window8<K>(r, x + 8, vinv), lo, hi);
+    _mm256_storeu_ps(out + x, _mm512_maskz_cvtpd_ps(0xFF, _mm512_add_pd(cd, lo)));
+    _mm256_storeu_ps(out + x + 8, _mm512_maskz_cvtpd_ps(0xFF, _mm512_add_pd(cd, hi)));
   }
   for (int j = 0; j < K; ++j) r[j] += x;
   esm_out_k_scalar<K>(r, w - x, inv, c, d_min, out + x);
+}
+
+template <int K>
+SL_TARGET("avx2") inline __m256d esm_window4(const double* const* r, int x, __m256d vinv) {
+  __m256d a = _mm256_loadu_pd(r[0] + x);
+  for (int j = 1; j < K; ++j) a = _mm256_add_pd(a, _mm256_loadu_pd(r[j] + x));
+  return _mm256_mul_pd(a, vinv);
 }
 
 template <int K>
@@ -496,11 +533,11 @@ SL_TARGET("avx2") void esm_out_k_avx2(const double* const* rows, int w,
   for (int j = 0; j < K; ++j) r[j] = rows[j];
   const __m256d vinv = _mm256_set1_pd(inv), cd = _mm256_set1_pd(c * d_min);
   int x = 0;
-  for (; x + 4 <= w; x += 4) {
-    __m256d a = _mm256_loadu_pd(r[0] + x);
-    for (int j = 1; j < K; ++j) a = _mm256_add_pd(a, _mm256_loadu_pd(r[j] + x));
-    a = _mm256_mul_pd(a, vinv);
-    _mm_storeu_ps(out + x, _mm256_cvtpd_ps(_mm256_add_pd(cd, log_d4(a))));
+  for (; x + 8 <= w; x += 8) {
+    __m256d lo, hi;
+    log_wide8(esm_window4<K>(r, x, vinv), esm_window4<K>(r, x + 4, vinv), lo, hi);
+    _mm_storeu_ps(out + x, _mm256_cvtpd_ps(_mm256_add_pd(cd, lo)));
+    _mm_storeu_ps(out + x + 4, _mm256_cvtpd_ps(_mm256_add_pd(cd, hi)));
   }
   for (int j = 0; j < K; ++j) r[j] += x;
   esm_out_k_scalar<K>(r, w - x, inv, c, d_min, out + x);

@@ -45,10 +45,13 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
                 FilterScratch& scratch);
 // ESM occluder term in log space: out = log( box_k( exp(c·d) ) ), i.e. c × the filtered
 // occluder depth, for any c in (0, 700]. Computed as c·d_min + log(box_k(exp(c·(d − d_min))))
-// in double with d_min the image's smallest distance, so every exponential lies in [1, e^c]
-// (finite in double for c <= 709) and no sum cancels; the naive fp32 exp(c·d) overflows once
-// c·d > 88.7. exp and ln are core/exp_log.h's (within 2 ulp, vectorized, the same bits on any
-// x86-64).
+// with d_min the image's smallest distance, so every exponential lies in [1, e^c] (finite in
+// double for c <= 709), summed in double so that no sum cancels; the naive fp32 exp(c·d)
+// overflows once c·d > 88.7. The exponent c·(d − d_min) is rounded once to float and exp and ln
+// are core/exp_log.h's exp_wide and log_wide (float precision, double range, vectorized, the
+// same bits on any x86-64): the stored value is a float, and the error they add, at most
+// c·2^-24 + 5e-7, is about what the float's own rounding and the lookup's float exponent add
+// (README "Techniques", ESM).
 // face_min: the smallest of the w × h distances (FaceDistances::min_distance), which saves the
 // filter a pass over the whole image; nullptr: the filter finds it (the oracle always does).
 void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vector<float>& out,

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -18,6 +19,8 @@ namespace {
 __attribute__((noinline)) double exp_one(double x) { return exp_d(x); }
 __attribute__((noinline)) double log_one(double x) { return log_d(x); }
 __attribute__((noinline)) float expf_one(float x) { return exp_f(x); }
+__attribute__((noinline)) double expw_one(float x) { return exp_wide(x); }
+__attribute__((noinline)) double logw_one(double x) { return log_wide(x); }
 
 // The loops the ESM filter runs, compiled for AVX2 and baseline like it.
 __attribute__((target_clones("avx2", "default"))) void exp_loop(const double* x, double* y, int n) {
@@ -48,6 +51,31 @@ SL_TARGET("avx2") __attribute__((noinline)) void expf8_store(const float* x, flo
 }
 SL_TARGET("avx512f") __attribute__((noinline)) void expf16_store(const float* x, float* y) {
   _mm512_storeu_ps(y, exp_f16(_mm512_loadu_ps(x)));
+}
+
+SL_TARGET("avx2") __attribute__((noinline)) void expw8_store(const float* x, double* y) {
+  __m256d lo, hi;
+  exp_wide8(_mm256_loadu_ps(x), lo, hi);
+  _mm256_storeu_pd(y, lo);
+  _mm256_storeu_pd(y + 4, hi);
+}
+SL_TARGET("avx512f") __attribute__((noinline)) void expw16_store(const float* x, double* y) {
+  __m512d lo, hi;
+  exp_wide16(_mm512_loadu_ps(x), lo, hi);
+  _mm512_storeu_pd(y, lo);
+  _mm512_storeu_pd(y + 8, hi);
+}
+SL_TARGET("avx2") __attribute__((noinline)) void logw8_store(const double* x, double* y) {
+  __m256d lo, hi;
+  log_wide8(_mm256_loadu_pd(x), _mm256_loadu_pd(x + 4), lo, hi);
+  _mm256_storeu_pd(y, lo);
+  _mm256_storeu_pd(y + 4, hi);
+}
+SL_TARGET("avx512f") __attribute__((noinline)) void logw16_store(const double* x, double* y) {
+  __m512d lo, hi;
+  log_wide16(_mm512_loadu_pd(x), _mm512_loadu_pd(x + 8), lo, hi);
+  _mm512_storeu_pd(y, lo);
+  _mm512_storeu_pd(y + 8, hi);
 }
 
 // Distance in units of the last place of the exact value (long double).
@@ -100,6 +128,89 @@ TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
   EXPECT_EQ(expf_one(0.0f), 1.0f);
   EXPECT_LE(worst, 2.0);
   RecordProperty("worst_expf_ulp", std::to_string(worst));
+}
+
+// exp_wide and log_wide (the ESM filter's float-precision pair, whose range is double's) against
+// long double. exp_wide: float x over the ESM filter's [0, 700] and the negative side, grid
+// points at multiples of ln2 (the reduction's rounding from either side) and the ends; its
+// error is exp_f's (2 float ulps, 2.4e-7 relative) plus the reduction's for |n| up to 1,010
+// (n·ln2's low part, ~2e-8): 3e-7. log_wide: arguments over [1, e^700] (the filter's: box means
+// of e^(c·(d − d_min)) >= 1), near 1 from both sides, at the fold (mantissas just below and
+// above 1.5) and over [e^-690, 1]; its error is m's rounding to float (6e-8 relative, so
+// absolute in ln m), the series in float (|ln m| <= 0.41: ~1e-7) and e·ln2 in double: 2e-7
+// absolute. Measured: README "Techniques", ESM.
+TEST(ExpLog, WideExpAndLogHoldFloatPrecisionOverDoublesRange) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<float> ux(-700.0f, 700.0f);
+  std::uniform_real_distribution<double> ul(0.0, 700.0), ul_neg(-690.0, 0.0);
+  double worst_exp = 0.0, worst_log = 0.0;
+  auto check_exp = [&](float x) {
+    const long double exact = std::exp((long double)x);
+    worst_exp = std::max(worst_exp, double(std::fabs((long double)expw_one(x) / exact - 1.0L)));
+  };
+  auto check_log = [&](double y) {
+    worst_log = std::max(worst_log, double(std::fabs((long double)logw_one(y) - std::log((long double)y))));
+  };
+  for (int i = 0; i < 200000; ++i) {
+    check_exp(ux(rng));
+    check_log(std::exp(i % 4 ? ul(rng) : ul_neg(rng)));
+  }
+  for (int n = -1000; n <= 1000; ++n)
+    for (const float f : {-0.5f, -0.49f, 0.0f, 0.49f, 0.5f})
+      check_exp(float((double(n) + double(f)) * 0.6931471805599453));
+  for (const float x : {0.0f, 1e-30f, -1e-30f, 700.0f, -700.0f, 88.7f, 89.0f}) check_exp(x);
+  for (int i = 1; i < 20000; ++i) {
+    check_log(i % 2 ? 1.0 + 1e-7 * i : 1.0 - 1e-7 * i);
+    const double fold = std::ldexp(1.5, i % 80 - 20);
+    check_log(i % 2 ? std::nextafter(fold, 0.0) : fold);
+  }
+  EXPECT_EQ(expw_one(0.0f), 1.0);
+  EXPECT_EQ(logw_one(1.0), 0.0);
+  EXPECT_LE(worst_exp, 3e-7);
+  EXPECT_LE(worst_log, 2e-7);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g relative, log %.3g absolute", worst_exp, worst_log);
+  RecordProperty("worst_wide_exp_and_log", text);
+}
+
+// exp_wide8 / exp_wide16 and log_wide8 / log_wide16 give the scalar calls' bits, lane for lane
+// (each half of the pair in its own place): grid and random exponents as above, and log
+// arguments at every power of two, both sides of the fold and just around 1.
+TEST(ExpLog, IntrinsicWideExpsAndLogsGiveTheScalarBits) {
+  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<float> ux(-700.0f, 700.0f);
+  std::uniform_real_distribution<double> ul(-690.0, 700.0);
+  for (int i = 0; i < 100000; i += 16) {
+    float x[16];
+    double y[16], e8[16], e16[16], l8[16], l16[16];
+    for (int k = 0; k < 16; ++k) {
+      const int t = i + k;
+      x[k] = t < 4096 ? float(double(t - 2048) * 0.6931471805599453 / 3.0) : ux(rng);
+      y[k] = t < 160  ? std::ldexp(t % 2 ? std::nextafter(1.5, 0.0) : 1.5, t / 2 - 40)
+             : t < 192 ? std::nextafter(1.0, t % 2 ? 2.0 : 0.0) * (1.0 + 1e-9 * (t - 160))
+             : t < 256 ? std::ldexp(1.0, t - 224)
+                       : std::exp(ul(rng));
+    }
+    expw8_store(x, e8);
+    expw8_store(x + 8, e8 + 8);
+    logw8_store(y, l8);
+    logw8_store(y + 8, l8 + 8);
+    if (avx512) {
+      expw16_store(x, e16);
+      logw16_store(y, l16);
+    }
+    for (int k = 0; k < 16; ++k) {
+      const double e = expw_one(x[k]), l = logw_one(y[k]);
+      ASSERT_EQ(std::memcmp(&e8[k], &e, 8), 0) << "exp_wide8 " << x[k];
+      ASSERT_EQ(std::memcmp(&l8[k], &l, 8), 0) << "log_wide8 " << y[k];
+      if (avx512) {
+        ASSERT_EQ(std::memcmp(&e16[k], &e, 8), 0) << "exp_wide16 " << x[k];
+        ASSERT_EQ(std::memcmp(&l16[k], &l, 8), 0) << "log_wide16 " << y[k];
+      }
+    }
+  }
 }
 
 // exp_d4 (AVX2 intrinsics, for hand-written kernels) gives exp_d's bits, negative arguments
