@@ -36,6 +36,19 @@ static inline simde__m512d shadowlab_emulated_cvtps_pd(simde__m256 a) {
 }
 #undef _mm512_cvtps_pd
 #define _mm512_cvtps_pd(a) shadowlab_emulated_cvtps_pd(a)
+// Sign extension of 8 int32 lanes to int64 (core/exp_log.h's exp_wide16), lane by lane.
+static inline simde__m512i shadowlab_emulated_cvtepi32_epi64(simde__m256i a) {
+  int32_t x[8];
+  long long y[8];
+  simde_mm256_storeu_si256(x, a);
+  for (int i = 0; i < 8; ++i) y[i] = x[i];
+  return simde_mm512_loadu_si512(y);
+}
+#undef _mm512_cvtepi32_epi64
+#define _mm512_cvtepi32_epi64(a) shadowlab_emulated_cvtepi32_epi64(a)
+#undef _mm512_maskz_cvtepi32_epi64
+#define _mm512_maskz_cvtepi32_epi64(k, a) \
+  simde_mm512_maskz_mov_epi64((k), shadowlab_emulated_cvtepi32_epi64(a))
 // AVX-512DQ's conversion of 8 doubles to int64 in the current rounding mode (nearest-even by
 // default): cvtsd2si per lane (__builtin_llrint), which like the vector form gives
 // 0x8000000000000000 for NaN and out-of-range values.

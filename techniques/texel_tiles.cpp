@@ -87,6 +87,13 @@ struct TexelRect {
   uint64_t area() const { return empty() ? 0 : uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1); }
 };
 
+// Prefetch hints for the n bytes at p, one per 64-byte line (a hint changes no value).
+inline void prefetch_bytes(const void* p, size_t n) {
+  const char* const c = static_cast<const char*>(p);
+  for (size_t o = 0; o < n; o += 64) __builtin_prefetch(c + o, 0, 3);
+  if (n > 0) __builtin_prefetch(c + n - 1, 0, 3);
+}
+
 // A layout has at most 6 faces (the cube's).
 constexpr int kMaxFaces = 6;
 
@@ -381,6 +388,15 @@ std::vector<FaceTiles> texel_tiles_needed(const Scene& scene, const GBuffer& g,
     }
     const int x0 = b * B, x1 = std::min(g.width, x0 + B);
     const int y0 = int(r) * B, y1 = std::min(g.height, y0 + B);
+    // The block's rows lie a GBuffer row apart and are out of the caches by now (the render
+    // ran since the lookups last read them): ask for all of them before the walk, which would
+    // otherwise wait on each row's first lines in turn.
+    for (int y = y0; y < y1; ++y) {
+      const size_t i = size_t(y) * size_t(g.width) + size_t(x0), n = size_t(x1 - x0);
+      prefetch_bytes(&g.position[i], n * sizeof(vec3));
+      prefetch_bytes(&g.geo_normal[i], n * sizeof(vec3));
+      prefetch_bytes(&g.covered[i], n);
+    }
     for (int y = y0; y < y1; ++y) {
       const size_t i = size_t(y) * size_t(g.width);
       marker.mark_each(i + size_t(x0), i + size_t(x1));
