@@ -265,15 +265,15 @@ SL_TARGET("avx512f") inline __m512 exp_f16(__m512 x) {
   return _mm512_castsi512_ps(_mm512_add_epi32(_mm512_castps_si512(p), q));
 }
 
-// exp_wide of 8 floats (AVX2) and of 16 (AVX-512), lanes 0..3 / 0..7 into lo and the rest into
-// hi: exp_f's float steps, then p widened and 2^ni added to its exponent in 64-bit lanes, so each
-// lane gets exp_wide's bits (tests/core/exp_log_test.cpp).
 // p · 2^n for floats p and int32 n, widened: n shifted into the double's exponent field.
 SL_TARGET("avx2") inline __m256d scale_wide4(__m128 p, __m128i n) {
   const __m256i q = _mm256_slli_epi64(_mm256_cvtepi32_epi64(n), 52);
   return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(_mm256_cvtps_pd(p)), q));
 }
 
+// exp_wide of 8 floats (AVX2) and of 16 (AVX-512, below), lanes 0..3 / 0..7 into lo and the
+// rest into hi: exp_f's float steps, then p widened and 2^ni added to its exponent in 64-bit
+// lanes, so each lane gets exp_wide's bits (tests/core/exp_log_test.cpp).
 SL_TARGET("avx2") inline void exp_wide8(__m256 x, __m256d& lo, __m256d& hi) {
   __m256i ni;
   const __m256 p = exp_f8_poly(x, ni);
@@ -371,11 +371,7 @@ SL_TARGET("avx512f") inline __m512d log_d8(__m512d x) {
   return _mm512_add_pd(a, _mm512_add_pd(ln_m, b));
 }
 
-// log_wide of 8 doubles (AVX2: two vectors of 4) and of 16 (AVX-512: two of 8), lane for lane
-// into lo and hi: log_wide's exact split of each double into e and m, the m's rounded to floats
-// and their ln taken 8 or 16 at a time in log_wide's order, then e·ln2 + ln m in double, so each
-// lane gets log_wide's bits (tests/core/exp_log_test.cpp).
-// log_wide's split of 4 (8) doubles: e, and m rounded to float.
+// log_wide's split of 4 (8, below) doubles: e, and m rounded to float.
 SL_TARGET("avx2") inline __m128 log_wide_m4(__m256d x, __m256d& e) {
   const __m256i bits = _mm256_castpd_si256(x);
   const __m256i up = _mm256_and_si256(_mm256_srli_epi64(bits, 51), _mm256_set1_epi64x(1));
@@ -389,6 +385,7 @@ SL_TARGET("avx2") inline __m128 log_wide_m4(__m256d x, __m256d& e) {
   return _mm256_cvtpd_ps(m);
 }
 
+// log_wide's ln m of 8 (16, below) floats m.
 SL_TARGET("avx2") inline __m256 ln_m8(__m256 mf) {
   const __m256 one = _mm256_set1_ps(1.0f);
   const __m256 s = _mm256_div_ps(_mm256_sub_ps(mf, one), _mm256_add_ps(mf, one));
@@ -400,6 +397,10 @@ SL_TARGET("avx2") inline __m256 ln_m8(__m256 mf) {
   return _mm256_add_ps(two_s, _mm256_mul_ps(two_s, _mm256_mul_ps(s2, q)));
 }
 
+// log_wide of 8 doubles (AVX2: two vectors of 4) and of 16 (AVX-512: two of 8, below), lane for
+// lane into lo and hi: log_wide's exact split of each double into e and m, the m's rounded to
+// floats and their ln taken 8 or 16 at a time in log_wide's order, then e·ln2 + ln m in double,
+// so each lane gets log_wide's bits (tests/core/exp_log_test.cpp).
 SL_TARGET("avx2") inline void log_wide8(__m256d x_lo, __m256d x_hi, __m256d& lo, __m256d& hi) {
   __m256d e_lo, e_hi;
   const __m128 m_lo = log_wide_m4(x_lo, e_lo), m_hi = log_wide_m4(x_hi, e_hi);
@@ -424,11 +425,7 @@ SL_TARGET("avx512f") inline __m256 log_wide_m8(__m512d x, __m512d& e) {
   return _mm512_maskz_cvtpd_ps(0xFF, m);  // zero-masked form: exp_d8's GCC 12 note
 }
 
-SL_TARGET("avx512f") inline void log_wide16(__m512d x_lo, __m512d x_hi, __m512d& lo,
-                                            __m512d& hi) {
-  __m512d e_lo, e_hi;
-  const __m256 m_lo = log_wide_m8(x_lo, e_lo), m_hi = log_wide_m8(x_hi, e_hi);
-  const __m512 mf = join_ps(m_lo, m_hi);
+SL_TARGET("avx512f") inline __m512 ln_m16(__m512 mf) {
   const __m512 one = _mm512_set1_ps(1.0f);
   const __m512 s = _mm512_div_ps(_mm512_sub_ps(mf, one), _mm512_add_ps(mf, one));
   const __m512 s2 = _mm512_mul_ps(s, s);
@@ -436,7 +433,14 @@ SL_TARGET("avx512f") inline void log_wide16(__m512d x_lo, __m512d x_hi, __m512d&
   for (const float k : {1.0f / 7.0f, 1.0f / 5.0f, 1.0f / 3.0f})
     q = _mm512_add_ps(_mm512_mul_ps(q, s2), _mm512_set1_ps(k));
   const __m512 two_s = _mm512_add_ps(s, s);
-  const __m512 ln_m = _mm512_add_ps(two_s, _mm512_mul_ps(two_s, _mm512_mul_ps(s2, q)));
+  return _mm512_add_ps(two_s, _mm512_mul_ps(two_s, _mm512_mul_ps(s2, q)));
+}
+
+SL_TARGET("avx512f") inline void log_wide16(__m512d x_lo, __m512d x_hi, __m512d& lo,
+                                            __m512d& hi) {
+  __m512d e_lo, e_hi;
+  const __m256 m_lo = log_wide_m8(x_lo, e_lo), m_hi = log_wide_m8(x_hi, e_hi);
+  const __m512 ln_m = ln_m16(join_ps(m_lo, m_hi));
   const __m512d ln2 = _mm512_set1_pd(0.6931471805599453);
   lo = _mm512_add_pd(_mm512_mul_pd(e_lo, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 0)));
   hi = _mm512_add_pd(_mm512_mul_pd(e_hi, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 1)));

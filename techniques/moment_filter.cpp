@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/cpu_features.h"
+#include "core/prefetch.h"
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
@@ -770,14 +771,6 @@ SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
   for (int x = 0; x < n; ++x) out[x] = finite_dist_bits(row[x]);
 }
 
-// Prefetch hints for the n floats at p, one per 64-byte line.
-inline void prefetch_row(const float* p, int n) {
-  const char* const b = reinterpret_cast<const char*>(p);
-  const char* const e = reinterpret_cast<const char*>(p + n);
-  for (const char* q = b; q < e; q += 64) __builtin_prefetch(q, 0, 3);
-  if (n > 0) __builtin_prefetch(e - 1, 0, 3);
-}
-
 // The fused separable box over `planes` planes of sums of type T (double; MSM's float), as a ring
 // of k horizontal-sum rows per span of output columns in each band of 32 output rows
 // (kTexelTile: one span over the whole width without `tiles`, else the needed tiles' runs,
@@ -820,7 +813,9 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
         for (int y = y0; y < y1; ++y) {
           const int last = std::min(h - 1, y + r);
           for (; next <= last; ++next) {
-            if (next + 1 < h) prefetch_row(src + size_t(next + 1) * size_t(w) + size_t(cols.in0), cols.in_n);
+            if (next + 1 < h)
+              prefetch_bytes(src + size_t(next + 1) * size_t(w) + size_t(cols.in0),
+                             size_t(cols.in_n) * sizeof(float));
             for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
             hrow(next, cols, dst.data(), ext);
           }

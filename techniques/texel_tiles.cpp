@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/prefetch.h"
 #include "techniques/faces_needed.h"
 #include "techniques/map_lookup_simd.h"
 #include "techniques/map_receiver.h"
@@ -86,13 +87,6 @@ struct TexelRect {
   bool empty() const { return x1 < x0 || y1 < y0; }
   uint64_t area() const { return empty() ? 0 : uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1); }
 };
-
-// Prefetch hints for the n bytes at p, one per 64-byte line (a hint changes no value).
-inline void prefetch_bytes(const void* p, size_t n) {
-  const char* const c = static_cast<const char*>(p);
-  for (size_t o = 0; o < n; o += 64) __builtin_prefetch(c + o, 0, 3);
-  if (n > 0) __builtin_prefetch(c + n - 1, 0, 3);
-}
 
 // A layout has at most 6 faces (the cube's).
 constexpr int kMaxFaces = 6;
