@@ -80,7 +80,9 @@ const char* work_csv_header() {
 
 std::string work_csv_values(const ShadowResult& r) {
   const WorkCounts& w = r.work;
-  if (r.from_cache) return ",,,0,0,0,0,0,0,0,0";  // not timed, no map
+  // Not timed, no map: empty times and the zero counts a computed reference row writes, in the
+  // same formats (taps per pixel with its four decimals).
+  if (r.from_cache) return ",,,0,0,0,0,0,0.0000,0,0";
   return fmt::format("{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{},{}", r.faces_ms, r.render_ms,
                      r.filter_ms, w.triangles_submitted, w.triangles_binned, w.texels_rendered,
                      w.texels_filtered, w.pixels_looked_up, w.taps_per_pixel(), w.bytes_written,

@@ -443,11 +443,27 @@ TEST(Mains, ErrorsNameTheirSourceOnce) {
 TEST(Mains, CachedReferenceTimesAreNull) {
   const std::string out = test::binary_path("cached_ref_out");
   const std::string cache = test::binary_path("cached_ref_cache");
+  std::filesystem::remove_all(cache);  // the first run computes the reference
   const std::string cmd = "SHADOWLAB_CACHE=" + cache + " " + std::string(SHADOWLAB_BINARY_DIR) +
                           "/experiments/resolution_sweep --quick --width 64 --height 48 --resolutions 32 --out " + out +
                           " >/dev/null 2>&1";
+  // The reference row's line of sweep.csv (the line after the header).
+  auto reference_line = [&] {
+    const std::string csv = csv_body(out + "/sweep.csv");
+    const size_t a = csv.find('\n') + 1;
+    return csv.substr(a, csv.find('\n', a) - a);
+  };
+  // Its last n comma-separated cells.
+  auto last_cells = [](const std::string& line, int n) {
+    size_t at = line.size();
+    for (int i = 0; i < n && at != std::string::npos && at > 0; ++i) at = line.rfind(',', at - 1);
+    return at == std::string::npos ? line : line.substr(at + 1);
+  };
   ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string computed = reference_line();
   ASSERT_EQ(std::system(cmd.c_str()), 0);  // second run: the reference comes from the cache
+  // The work counts (the last 8 cells) read the same either way, formats included.
+  EXPECT_EQ(last_cells(reference_line(), 8), last_cells(computed, 8)) << computed;
   const nlohmann::json j = nlohmann::json::parse(file_bytes(out + "/sweep.json"));
   EXPECT_TRUE(j["reference"]["from_cache"].get<bool>());
   EXPECT_TRUE(j["reference"]["shadow_ms"].is_null());
