@@ -16,6 +16,7 @@
 #include "core/parallel.h"
 #include "core/simd_target.h"
 #include "core/stream_copy.h"
+#include "techniques/centred_window3.h"
 #include "techniques/texel_tiles.h"
 
 namespace shadowlab {
@@ -951,6 +952,51 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
       });
 }
 
+// VSM's and EVSM's k = 3 filter (techniques/centred_window3.h: one centred 9-tap float window
+// per texel): per band of 32 output rows and span of needed columns (as fused_box walks them),
+// a ring of the three extended input rows make_row(y, cols, in) writes (cols.in_n floats at
+// `in`, clamped at the span's ends here), each made once per band and span, the next one's
+// input prefetched (fused_box says why); the output rows by centred_window3_row per `isa`.
+template <class MakeRow>
+void centred3_box(int w, int h, const FaceTiles* tiles, const float* src, WindowIsa isa,
+                  const MeanVarOut& o, const MakeRow& make_row) {
+  const int bands = (h + kTexelTile - 1) / kTexelTile;
+  parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
+    const size_t row_len = size_t(w) + 2;
+    const std::unique_ptr<float[]> ring(new float[3 * row_len]);
+    auto slot = [&](int y) { return ring.get() + size_t(y % 3) * row_len; };
+    std::vector<TexelSpan> spans;
+    for (size_t band = b0; band < b1; ++band) {
+      tile_spans(tiles, int(band), w, spans);
+      const int y0 = int(band) * kTexelTile, y1 = std::min(h, y0 + kTexelTile);
+      for (const TexelSpan& span : spans) {
+        const SpanCols cols = span_cols(span, w, 1);
+        int next = std::max(0, y0 - 1);  // the first input row not made yet
+        for (int y = y0; y < y1; ++y) {
+          const int below = std::min(h - 1, y + 1);
+          for (; next <= below; ++next) {
+            if (next + 1 < h)
+              prefetch_bytes(src + size_t(next + 1) * size_t(w) + size_t(cols.in0),
+                             size_t(cols.in_n) * sizeof(float));
+            float* const row = slot(next);
+            make_row(next, cols, row + cols.lead);
+            extend_span(row, cols, 3);
+          }
+          const size_t at = (size_t(y) * size_t(w) + size_t(cols.x0)) * size_t(o.stride);
+          centred_window3_row(isa, slot(std::max(0, y - 1)), slot(y), slot(below), cols.n,
+                              o.mean + at, o.var + at, o.stride);
+        }
+      }
+    }
+  });
+}
+
+// The window kernels of an ExpPath choice (the oracles' scalar one included).
+WindowIsa window_isa(ExpPath p) {
+  return p == ExpPath::avx512 ? WindowIsa::avx512
+                              : p == ExpPath::avx2 ? WindowIsa::avx2 : WindowIsa::scalar;
+}
+
 // The fixed-width box of a float row's two moments: make_row(y, span, in) writes the span's
 // span.in_n input floats at `in` (finite distances for VSM, EVSM's warp), then the row is
 // clamped at its ends and hsum_moments_k forms each value and its square in double inside the
@@ -980,6 +1026,14 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
                     const FaceTiles* tiles, const MeanVarOut& o) {
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
+  // k = 3 without the slope term: the centred float window, the oracle with its scalar kernel.
+  if (k == 3 && !slope_term) {
+    centred3_box(w, h, tiles, dist, window_isa(exp_path(fixed_kernels)), o,
+                 [&](int y, const SpanCols& s, float* in) {
+                   finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, in);
+                 });
+    return;
+  }
   // Without the slope term, d² is formed inside the horizontal sums from the float row.
   if (fixed_kernels && !slope_term &&
       float_moments_fixed(w, h, k, tiles, dist, exp_path(true), o,
@@ -1054,6 +1108,17 @@ namespace {
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
+  // k = 3: the centred float window of the float warp, the oracle with the scalar warp and
+  // window kernels.
+  if (k == 3) {
+    const ExpPath path = exp_path(fixed_kernels);
+    centred3_box(w, h, tiles, dist, window_isa(path), o,
+                 [&](int y, const SpanCols& s, float* in) {
+                   warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c,
+                              sign, in);
+                 });
+    return;
+  }
   // Fixed widths: the warp as floats, its moments formed in the horizontal sums (VSM's
   // fixed path); the runtime-k oracle keeps the two double rows.
   if (fixed_kernels) {

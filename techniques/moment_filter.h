@@ -1,7 +1,8 @@
 #pragma once
 // Filters that turn a face's normalised radial distances (techniques/face_render.h) into the
-// filtered maps of the variance and exponential shadow maps. All are separable box filters of
-// odd width k over a w × h image, clamp-to-edge at the borders (the faces' guard bands keep
+// filtered maps of the variance and exponential shadow maps. All are box filters of odd width k
+// over a w × h image (separable, but VSM's and EVSM's at k = 3: one 9-tap window per texel),
+// clamp-to-edge at the borders (the faces' guard bands keep
 // looked-up texels away from them). Empty texels (+inf, nothing seen) count as distance 1,
 // the light's range. Each output texel depends only on its inputs and a fixed order of
 // additions, so results are identical for any thread count.
@@ -21,6 +22,9 @@ struct FilterScratch {
 // VSM moments filtered in double and stored centred: mean = E[d] and variance = E[d²] − E[d]²,
 // each rounded to float once at the end. Storing the variance itself keeps its relative
 // precision: the fp32 difference of second moments near d = 1 loses everything below ~1.2e-7.
+// k = 3 without the slope term (the default blur) takes each texel's 9-tap window in float
+// centred on its own distance instead (techniques/centred_window3.h: cheaper, and within
+// 1.7e-5 of the variance and one ulp of the mean plus 26·2^-24 of the window's σ).
 // slope_term adds ¼((∂d/∂x)² + (∂d/∂y)²) per texel to E[d²] (Krave), with each derivative the
 // smaller-magnitude one-sided difference (so a silhouette's jump does not count).
 void filter_moments_double(const float* dist, int w, int h, int k, bool slope_term,
@@ -60,7 +64,8 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 // EVSM's warped moments (Lauritzen & McCool 2008): v = sign·e^(sign·c·(2d − 1)) per texel
 // (d = the distance with "nothing seen" as 1, warped to [−1, 1]; sign +1 the positive warp,
 // −1 the negative one), box-filtered in double and stored as mean and variance floats like
-// filter_moments_double. |v| <= e^c and v² <= e^(2c): finite in float for c <= 44.36. The warp
+// filter_moments_double (k = 3: its centred float window of v). |v| <= e^c and v² <= e^(2c):
+// finite in float for c <= 44.36. The warp
 // itself is made in float (exp_f of float(sign·c)·((d + d) − 1)): its rounding, ~4e-6 of v at
 // c = 44, is what a change of d by 1–2 of its own float ulps does, and v and v² are then
 // summed in double, where the variance's cancellation needs it (README "Techniques", EVSM).
@@ -92,8 +97,9 @@ void filter_power_moments_interleaved(const float* dist, int w, int h, int k,
 
 // The filters above run kernels with the box width k a compile-time constant for k = 1, 3,
 // 5, 7, 9 (sums kept in registers; AVX-512, AVX2 or baseline picked at load time) and
-// runtime-k row loops otherwise. These run the runtime-k loops for every k: the oracle the
-// fixed-width kernels must equal bit for bit (tests/techniques/moment_filter_test.cpp).
+// runtime-k row loops otherwise. These run the runtime-k loops for every k (VSM's and EVSM's
+// k = 3 window its scalar loop): the oracle the fixed-width kernels must equal bit for bit
+// (tests/techniques/moment_filter_test.cpp).
 void filter_moments_double_oracle(const float* dist, int w, int h, int k, bool slope_term,
                                   std::vector<float>& mean, std::vector<float>& variance,
                                   const FaceTiles* tiles = nullptr);
