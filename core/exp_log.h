@@ -410,19 +410,18 @@ SL_TARGET("avx2") inline void log_wide8(__m256d x_lo, __m256d x_hi, __m256d& lo,
   hi = _mm256_add_pd(_mm256_mul_pd(e_hi, ln2), _mm256_cvtps_pd(_mm256_extractf128_ps(ln_m, 1)));
 }
 
+// log_wide's split of 8 positive normal doubles, x = m·2^e with m in [0.75, 1.5): getmant's
+// [0.75, 1.5) interval is that m exactly (the [1, 2) mantissa, halved from 1.5 on), getexp the
+// exponent of x's [1, 2) form, one more where the mantissa was halved; the two instructions do
+// what log_wide's eleven integer steps do (README "Technique benchmark", fifteenth session).
+// Returns m as floats; e as doubles (exact integers). The zero-masked forms with every lane on:
+// GCC 12's unmasked ones trip -Wmaybe-uninitialized, as in exp_d8.
 SL_TARGET("avx512f") inline __m256 log_wide_m8(__m512d x, __m512d& e) {
-  const __m512i bits = _mm512_castpd_si512(x);
-  // Zero-masked shifts with every lane on, as in exp_d8.
-  const __m512i up =
-      _mm512_and_si512(_mm512_maskz_srli_epi64(0xFF, bits, 51), _mm512_set1_epi64(1));
-  const __m512i m_exp = _mm512_sub_epi64(_mm512_set1_epi64(0x3FF0000000000000LL),
-                                         _mm512_maskz_slli_epi64(0xFF, up, 52));
-  const __m512i mant = _mm512_and_si512(bits, _mm512_set1_epi64(0x000FFFFFFFFFFFFFLL));
-  const __m512d m = _mm512_castsi512_pd(_mm512_or_si512(mant, m_exp));
-  const __m512i n = _mm512_add_epi64(_mm512_maskz_srli_epi64(0xFF, bits, 52), up);
-  const __m512i e_bits = _mm512_or_si512(_mm512_set1_epi64(0x4330000000000000LL), n);
-  e = _mm512_sub_pd(_mm512_castsi512_pd(e_bits), _mm512_set1_pd(4503599627370496.0 + 1023.0));
-  return _mm512_maskz_cvtpd_ps(0xFF, m);  // zero-masked form: exp_d8's GCC 12 note
+  const __m512d m = _mm512_maskz_getmant_pd(0xFF, x, _MM_MANT_NORM_p75_1p5, _MM_MANT_SIGN_src);
+  const __m512d g = _mm512_maskz_getexp_pd(0xFF, x);
+  const __m512d one = _mm512_set1_pd(1.0);
+  e = _mm512_mask_add_pd(g, _mm512_cmp_pd_mask(m, one, _CMP_LT_OQ), g, one);
+  return _mm512_maskz_cvtpd_ps(0xFF, m);
 }
 
 SL_TARGET("avx512f") inline __m512 ln_m16(__m512 mf) {

@@ -185,6 +185,35 @@ static inline simde__m512d shadowlab_emulated_maskz_cvtepi64_pd(simde__mmask8 k,
 #undef _mm512_maskz_shuffle_f32x4
 #define _mm512_maskz_shuffle_f32x4(k, a, b, imm) \
   simde_mm512_maskz_mov_ps((k), simde_mm512_shuffle_f32x4((a), (b), (imm)))
+// getexp and getmant of 8 finite nonzero doubles, zero-masked: x = m·2^e with the [1, 2)
+// mantissa m and its exponent e, by frexp; getmant here only in the [0.75, 1.5) interval with
+// the source's sign (core/exp_log.h's log_wide_m8), m halved from 1.5 on.
+static inline simde__m512d shadowlab_emulated_maskz_getexp_pd(simde__mmask8 k, simde__m512d a) {
+  double d[8];
+  simde_mm512_storeu_pd(d, a);
+  for (int i = 0; i < 8; ++i) {
+    int e = 0;
+    (void)__builtin_frexp(d[i], &e);
+    d[i] = ((k >> i) & 1) ? double(e - 1) : 0.0;
+  }
+  return simde_mm512_loadu_pd(d);
+}
+static inline simde__m512d shadowlab_emulated_maskz_getmant_p75_pd(simde__mmask8 k, simde__m512d a) {
+  double d[8];
+  simde_mm512_storeu_pd(d, a);
+  for (int i = 0; i < 8; ++i) {
+    int e = 0;
+    double m = 2.0 * __builtin_fabs(__builtin_frexp(d[i], &e));
+    if (m >= 1.5) m *= 0.5;
+    d[i] = ((k >> i) & 1) ? __builtin_copysign(m, d[i]) : 0.0;
+  }
+  return simde_mm512_loadu_pd(d);
+}
+#undef _mm512_maskz_getexp_pd
+#define _mm512_maskz_getexp_pd(k, a) shadowlab_emulated_maskz_getexp_pd((k), (a))
+#undef _mm512_maskz_getmant_pd
+#define _mm512_maskz_getmant_pd(k, a, interval, sign) \
+  shadowlab_emulated_maskz_getmant_p75_pd((k), (a))
 // Zero-masked forms: the unmasked operation, then the mask.
 #undef _mm512_maskz_cvtps_pd
 #define _mm512_maskz_cvtps_pd(k, a) simde_mm512_maskz_mov_pd((k), shadowlab_emulated_cvtps_pd(a))
