@@ -150,6 +150,19 @@ inline double exp_wide(float x) {
   return std::bit_cast<double>(std::bit_cast<int64_t>(double(p)) + (int64_t(ni) << 52));
 }
 
+// ln m for float m in [0.75, 1.5): s = (m − 1)/(m + 1) (|s| <= 0.2), 2·atanh(s) to s^9
+// (truncation below 4e-9), in float. log_wide's and log_wide_f's mantissa step.
+inline float ln_m_f(float mf) {
+  const float s = (mf - 1.0f) / (mf + 1.0f);
+  const float s2 = s * s;
+  float q = 1.0f / 9.0f;
+  q = q * s2 + 1.0f / 7.0f;
+  q = q * s2 + 1.0f / 5.0f;
+  q = q * s2 + 1.0f / 3.0f;
+  const float two_s = s + s;
+  return two_s + two_s * (s2 * q);
+}
+
 // ln x for positive normal double x to float precision, as a double: within 2e-7 of ln x
 // (absolute; tests/core/exp_log_test.cpp). x = 2^e · m exactly, m in [0.75, 1.5) (mantissas
 // from 1.5 up taken to the next octave, as log_d does, so that no sum cancels); then ln m in
@@ -164,16 +177,17 @@ inline double log_wide(double x) {
   // e exactly, as log_d forms it: (2^52 + n) − (2^52 + 1023).
   const uint64_t n = (bits >> 52) + up;
   const double e = std::bit_cast<double>(0x4330000000000000ULL | n) - (4503599627370496.0 + 1023.0);
-  const float mf = float(m);
-  const float s = (mf - 1.0f) / (mf + 1.0f);
-  const float s2 = s * s;
-  float q = 1.0f / 9.0f;
-  q = q * s2 + 1.0f / 7.0f;
-  q = q * s2 + 1.0f / 5.0f;
-  q = q * s2 + 1.0f / 3.0f;
-  const float two_s = s + s;
-  const float ln_m = two_s + two_s * (s2 * q);
-  return e * 0.6931471805599453 + double(ln_m);
+  return e * 0.6931471805599453 + double(ln_m_f(float(m)));
+}
+
+// log_wide's split of a positive normal float: x = 2^e · m exactly, m in [0.75, 1.5) (mantissas
+// from 1.5 up taken to the next octave, so that ln m by ln_m_f never cancels against e·ln2).
+// The ESM filter's float tiles (techniques/esm_float_tiles.h) take ln x as e·ln2 + ln_m_f(m).
+inline float log_split_f(float x, int32_t& e) {
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  const uint32_t up = (bits >> 22) & 1;  // mantissa >= 1.5
+  e = int32_t((bits >> 23) + up) - 127;
+  return std::bit_cast<float>((bits & 0x007FFFFFu) | (0x3F800000u - (up << 23)));
 }
 
 #if defined(__x86_64__)
@@ -443,6 +457,31 @@ SL_TARGET("avx512f") inline void log_wide16(__m512d x_lo, __m512d x_hi, __m512d&
   const __m512d ln2 = _mm512_set1_pd(0.6931471805599453);
   lo = _mm512_add_pd(_mm512_mul_pd(e_lo, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 0)));
   hi = _mm512_add_pd(_mm512_mul_pd(e_hi, ln2), _mm512_maskz_cvtps_pd(0xFF, half_ps(ln_m, 1)));
+}
+
+// log_split_f of 8 floats (AVX2) and of 16 (AVX-512): the same integer steps in 32-bit lanes,
+// so each lane gets log_split_f's m and e (tests/core/exp_log_test.cpp).
+SL_TARGET("avx2") inline __m256 log_split_f8(__m256 x, __m256i& e) {
+  const __m256i bits = _mm256_castps_si256(x);
+  const __m256i up = _mm256_and_si256(_mm256_srli_epi32(bits, 22), _mm256_set1_epi32(1));
+  e = _mm256_sub_epi32(_mm256_add_epi32(_mm256_srli_epi32(bits, 23), up), _mm256_set1_epi32(127));
+  const __m256i m_exp =
+      _mm256_sub_epi32(_mm256_set1_epi32(0x3F800000), _mm256_slli_epi32(up, 23));
+  return _mm256_castsi256_ps(
+      _mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi32(0x007FFFFF)), m_exp));
+}
+
+// (The zero-masked shifts with every lane on, as in exp_f16.)
+SL_TARGET("avx512f") inline __m512 log_split_f16(__m512 x, __m512i& e) {
+  const __m512i bits = _mm512_castps_si512(x);
+  const __m512i up =
+      _mm512_and_si512(_mm512_maskz_srli_epi32(0xFFFF, bits, 22), _mm512_set1_epi32(1));
+  e = _mm512_sub_epi32(_mm512_add_epi32(_mm512_maskz_srli_epi32(0xFFFF, bits, 23), up),
+                       _mm512_set1_epi32(127));
+  const __m512i m_exp =
+      _mm512_sub_epi32(_mm512_set1_epi32(0x3F800000), _mm512_maskz_slli_epi32(0xFFFF, up, 23));
+  return _mm512_castsi512_ps(
+      _mm512_or_si512(_mm512_and_si512(bits, _mm512_set1_epi32(0x007FFFFF)), m_exp));
 }
 #endif
 

@@ -234,3 +234,6 @@ static inline void shadowlab_emulated_mask_storeu_epi32(void* p, simde__mmask8 k
   for (int i = 0; i < 8; ++i)
     if ((k >> i) & 1) __builtin_memcpy(static_cast<char*>(p) + 4 * i, &lanes[i], 4);
 }
+// 32-bit logical right shift, zero-masked (core/exp_log.h's log_split_f16), as the others.
+#undef _mm512_maskz_srli_epi32
+#define _mm512_maskz_srli_epi32(k, a, n) simde_mm512_maskz_mov_epi32((k), simde_mm512_srli_epi32((a), (n)))

@@ -17,6 +17,7 @@
 #include "core/simd_target.h"
 #include "core/stream_copy.h"
 #include "techniques/centred_window3.h"
+#include "techniques/esm_float_tiles.h"
 #include "techniques/texel_tiles.h"
 
 namespace shadowlab {
@@ -1303,6 +1304,14 @@ namespace {
 void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernels,
              const FaceTiles* tiles, const float* face_min, std::vector<float>& out) {
   const size_t n = size_t(w) * size_t(h);
+  out.resize(n);
+  // The tiles whose inputs' range allows it go through the float path (techniques/
+  // esm_float_tiles.h); the rest, and every tile of a box wider than it takes, below.
+  FaceTiles rest;
+  if (k <= kEsmFloatMaxWidth) {
+    if (esm_float_tiles(dist, w, h, k, c, fixed_kernels, tiles, out.data(), rest) == 0) return;
+    tiles = &rest;
+  }
   // The image's smallest finite distance (1 when none is smaller): from the caller, or a
   // fixed-order reduction over per-row minima.
   double d_min = 1.0;
@@ -1315,7 +1324,6 @@ void esm_log(const float* dist, int w, int h, int k, double c, bool fixed_kernel
     });
     for (float m : row_min) d_min = std::min(d_min, double(m));
   }
-  out.resize(n);
   const double inv = 1.0 / double(k * k);
   const ExpPath path = exp_path(fixed_kernels);
   auto exp_row = [&](int y, const SpanCols& s, double* ext) {

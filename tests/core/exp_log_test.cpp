@@ -6,9 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -76,6 +78,18 @@ SL_TARGET("avx512f") __attribute__((noinline)) void logw16_store(const double* x
   log_wide16(_mm512_loadu_pd(x), _mm512_loadu_pd(x + 8), lo, hi);
   _mm512_storeu_pd(y, lo);
   _mm512_storeu_pd(y + 8, hi);
+}
+
+SL_TARGET("avx2") __attribute__((noinline)) void split8_store(const float* x, float* m, int32_t* e) {
+  __m256i ev;
+  _mm256_storeu_ps(m, log_split_f8(_mm256_loadu_ps(x), ev));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(e), ev);
+}
+SL_TARGET("avx512f") __attribute__((noinline)) void split16_store(const float* x, float* m,
+                                                                 int32_t* e) {
+  __m512i ev;
+  _mm512_storeu_ps(m, log_split_f16(_mm512_loadu_ps(x), ev));
+  _mm512_storeu_si512(e, ev);
 }
 
 // Distance in units of the last place of the exact value (long double).
@@ -322,6 +336,51 @@ TEST(ExpLog, VectorizedLoopsGiveTheScalarBits) {
   for (int i = 0; i < n; ++i) {
     const float one = expf_one(xf[i]);
     ASSERT_EQ(std::memcmp(&yf[i], &one, 4), 0) << xf[i];
+  }
+}
+
+// log_split_f: x = 2^e · m exactly with m in [0.75, 1.5), checked in double (exact for these
+// values) on both sides of every binade's 1.5 and 1 points from 2^-126 up and on random
+// positive normal floats; its 8- and 16-lane forms give its m and e in every lane.
+TEST(ExpLog, FloatLogSplitIsExactAndItsLanesAgree) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<uint32_t> bits(0x00800000u, 0x7F7FFFFFu);
+  std::vector<float> xs;
+  for (int b = -126; b <= 127; ++b)
+    for (const float f : {1.0f, 1.5f}) {
+      const float v = std::ldexp(f, b);
+      if (std::isinf(v)) continue;
+      xs.push_back(v);
+      if (std::nextafter(v, 0.0f) >= std::numeric_limits<float>::min())
+        xs.push_back(std::nextafter(v, 0.0f));
+      xs.push_back(std::nextafter(v, INFINITY));
+    }
+  while (xs.size() % 16 != 0 || xs.size() < 20000) xs.push_back(std::bit_cast<float>(bits(rng)));
+  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  for (size_t i = 0; i < xs.size(); i += 16) {
+    float m8[16], m16[16];
+    int32_t e8[16], e16[16];
+    if (avx2) {
+      split8_store(&xs[i], m8, e8);
+      split8_store(&xs[i + 8], m8 + 8, e8 + 8);
+    }
+    if (avx512) split16_store(&xs[i], m16, e16);
+    for (int k = 0; k < 16; ++k) {
+      const float x = xs[i + size_t(k)];
+      int32_t e;
+      const float m = log_split_f(x, e);
+      ASSERT_GE(m, 0.75f) << x;
+      ASSERT_LT(m, 1.5f) << x;
+      ASSERT_EQ(std::ldexp(double(m), e), double(x)) << x;
+      if (avx2) {
+        ASSERT_EQ(std::memcmp(&m8[k], &m, 4), 0) << "log_split_f8 " << x;
+        ASSERT_EQ(e8[k], e) << "log_split_f8 " << x;
+      }
+      if (avx512) {
+        ASSERT_EQ(std::memcmp(&m16[k], &m, 4), 0) << "log_split_f16 " << x;
+        ASSERT_EQ(e16[k], e) << "log_split_f16 " << x;
+      }
+    }
   }
 }
 
