@@ -56,7 +56,7 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // same bits on any x86-64): the stored value is a float, and the error they add, at most
 // c·2^-24 + 5e-7, is about what the float's own rounding and the lookup's float exponent add
 // (README "Techniques", ESM). For k <= 9, every tile of 32 × 32 texels whose windows' range
-// allows it (c·(hi − lo)/2 <= 80) is instead filtered in float around its own middle
+// allows it (c·(hi − lo)/2 <= ~80) is instead filtered in float around its own middle
 // distance (techniques/esm_float_tiles.h: twice the lanes per instruction, within
 // (X + 2k + 4)·2^-24 + 2.3e-7 + half an ulp, X <= 80 the tile's largest exponent); the rest as
 // above. Each texel's value depends on its tile's inputs only, so tiles change no bits.

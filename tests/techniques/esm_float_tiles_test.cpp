@@ -65,15 +65,23 @@ double exact_value(const std::vector<float>& d, int w, int h, int k, double c, i
   return double(std::log(s / (long double)(k * k)));
 }
 
+// The largest |c·(d − s)| over a tile whose distances span [lo, hi], s the float nearest the
+// middle (the header's definition).
+double largest_exponent(double c, float lo, float hi) {
+  const double s = double(float((double(lo) + double(hi)) * 0.5));
+  return c * std::max(double(hi) - s, s - double(lo));
+}
+
 double half_ulp(double v) {
   const float f = float(v);
   return 0.5 * double(std::nextafter(std::fabs(f), INFINITY) - std::fabs(f));
 }
 
-// The tiles the float path leaves are exactly those whose range c·(hi − lo)/2 exceeds 80, found
+// The tiles the float path leaves are exactly those whose X = c·max(hi − s, s − lo) exceeds 80
+// (s: the float nearest (lo + hi)/2), found
 // here by a brute-force pass over each tile's windows; every texel of a taken tile is within
 // the header's bound of the exact value: (X + 2k + 4)·2^-24 + 2e-7 + 3e-8 + half the stored
-// float's ulp, X = c·(hi − lo)/2 the tile's largest exponent (its exponents' rounding, relative
+// float's ulp, X the tile's largest exponent (its exponents' rounding, relative
 // |x|·2^-24 in each term; exp_f's 2 ulp; the k − 1 additions of each sum, the float 1/k² and the
 // product; ln_m_f's 2e-7; the combine's small roundings; the store). The tiles left go through
 // filter_esm_log's double path, checked by its own bound (moment_filter_test.cpp).
@@ -95,7 +103,7 @@ TEST(EsmFloatTiles, TakeTheTilesTheirRangeAllowsWithinTheAnalysedBound) {
         for (int tx = 0; tx < tx_n; ++tx) {
           float lo, hi;
           tile_range(d, w, h, k, tx, ty, lo, hi);
-          const double x_max = c * (double(hi) - double(lo)) * 0.5;
+          const double x_max = largest_exponent(c, lo, hi);
           const bool taken = x_max <= 80.0;
           expect_left += taken ? 0 : 1;
           ASSERT_EQ(rest.need[size_t(ty * tx_n + tx)] == 0, taken) << tx << "," << ty;
@@ -163,7 +171,7 @@ TEST(EsmFloatTiles, FilterEsmLogJoinsBothPaths) {
     for (int x = 0; x < w; ++x) {
       float lo, hi;
       tile_range(d, w, h, k, x / 32, y / 32, lo, hi);
-      const double x_max = c * (double(hi) - double(lo)) * 0.5;
+      const double x_max = largest_exponent(c, lo, hi);
       const double truth = exact_value(d, w, h, k, c, x, y);
       const double bound = x_max <= 80.0
                                ? (x_max + 2.0 * k + 4.0) * 0x1p-24 + 2.3e-7 + half_ulp(truth)
