@@ -34,58 +34,34 @@ struct Tile {
   int x0, y0, tw, th;
 };
 
-// Stages one input row's `n` texels from src as finite distances (d < 1 ? d : 1), with `lead`
-// copies of the first before them and the last repeated up to `pad_to` values, and widens
-// [lo, hi] over the n. min and max are exact, so any order and width give the same lo and hi.
-void stage_row_scalar(const float* src, int n, int lead, int pad_to, float* dst, float& lo,
-                      float& hi) {
-  for (int x = 0; x < n; ++x) {
-    const float d = src[x] < 1.0f ? src[x] : 1.0f;  // NaN and +inf: 1
-    dst[lead + x] = d;
-    lo = std::min(lo, d);
-    hi = std::max(hi, d);
-  }
+// Stages one input row's `n` texels from src as finite distances (d < 1 ? d : 1: NaN and +inf
+// give 1), with `lead` copies of the first before them and the last repeated up to `pad_to`
+// values (the band's rows: the span's columns and k/2 around them, clamped at the image's edges,
+// then padding the vector exponentials may read).
+void stage_row_scalar(const float* src, int n, int lead, int pad_to, float* dst) {
+  for (int x = 0; x < n; ++x) dst[lead + x] = src[x] < 1.0f ? src[x] : 1.0f;
   for (int x = 0; x < lead; ++x) dst[x] = dst[lead];
   for (int x = lead + n; x < pad_to; ++x) dst[x] = dst[lead + n - 1];
 }
 
 #if defined(__x86_64__)
-SL_TARGET("avx2") void stage_row_avx2(const float* src, int n, int lead, int pad_to, float* dst,
-                                      float& lo, float& hi) {
+SL_TARGET("avx2") void stage_row_avx2(const float* src, int n, int lead, int pad_to, float* dst) {
   const __m256 one = _mm256_set1_ps(1.0f);
-  __m256 vlo = _mm256_set1_ps(lo), vhi = _mm256_set1_ps(hi);
   int x = 0;
-  for (; x + 8 <= n; x += 8) {
-    // minps returns its second operand unless the first is smaller: NaN and +inf give 1.
-    const __m256 d = _mm256_min_ps(_mm256_loadu_ps(src + x), one);
-    _mm256_storeu_ps(dst + lead + x, d);
-    vlo = _mm256_min_ps(vlo, d);
-    vhi = _mm256_max_ps(vhi, d);
-  }
-  alignas(32) float l[8], u[8];
-  _mm256_store_ps(l, vlo);
-  _mm256_store_ps(u, vhi);
-  for (int i = 0; i < 8; ++i) {
-    lo = std::min(lo, l[i]);
-    hi = std::max(hi, u[i]);
-  }
-  for (; x < n; ++x) {
-    const float d = src[x] < 1.0f ? src[x] : 1.0f;
-    dst[lead + x] = d;
-    lo = std::min(lo, d);
-    hi = std::max(hi, d);
-  }
+  // minps returns its second operand unless the first is smaller: NaN and +inf give 1.
+  for (; x + 8 <= n; x += 8)
+    _mm256_storeu_ps(dst + lead + x, _mm256_min_ps(_mm256_loadu_ps(src + x), one));
+  for (; x < n; ++x) dst[lead + x] = src[x] < 1.0f ? src[x] : 1.0f;
   for (int i = 0; i < lead; ++i) dst[i] = dst[lead];
   for (int i = lead + n; i < pad_to; ++i) dst[i] = dst[lead + n - 1];
 }
 #endif
 
-void stage_row(Isa isa, const float* src, int n, int lead, int pad_to, float* dst, float& lo,
-               float& hi) {
+void stage_row(Isa isa, const float* src, int n, int lead, int pad_to, float* dst) {
 #if defined(__x86_64__)
-  if (isa != Isa::scalar) return stage_row_avx2(src, n, lead, pad_to, dst, lo, hi);
+  if (isa != Isa::scalar) return stage_row_avx2(src, n, lead, pad_to, dst);
 #endif
-  stage_row_scalar(src, n, lead, pad_to, dst, lo, hi);
+  stage_row_scalar(src, n, lead, pad_to, dst);
 }
 
 // A tile's exponentials: dst[yy·kPitch + x] = e^(float(c·(d − s))) of d = src[yy·pitch + x], x < n,
@@ -288,10 +264,10 @@ void vsum(const float* h, int n, int k, float inv, float* a) {
   for (int x = 0; x < n; ++x) a[x] *= inv;
 }
 
-void box_tile_scalar(const float* stage, int tw, int th, int k, ShiftTerm t, float* hbuf,
+void box_tile_scalar(const float* ebuf, int tw, int th, int k, ShiftTerm t, float* hbuf,
                      float* abuf, float* out, int w) {
   for (int yy = 0; yy < th + k - 1; ++yy)
-    hsum(stage + size_t(yy) * kPitch, tw, k, hbuf + size_t(yy) * kTexelTile);
+    hsum(ebuf + size_t(yy) * kPitch, tw, k, hbuf + size_t(yy) * kTexelTile);
   const float inv = 1.0f / float(k * k);
   for (int y = 0; y < th; ++y) {
     vsum(hbuf + size_t(y) * kTexelTile, tw, k, inv, abuf);
@@ -302,10 +278,10 @@ void box_tile_scalar(const float* stage, int tw, int th, int k, ShiftTerm t, flo
 #if defined(__x86_64__)
 // A whole tile's sums (32 columns) in 4 (AVX2) or 2 (AVX-512) registers per row, and each output
 // row's mean straight into the logarithm: the scalar loops' additions in their order.
-SL_TARGET("avx2") void box_tile_avx2(const float* stage, int th, int k, ShiftTerm t, float* hbuf,
+SL_TARGET("avx2") void box_tile_avx2(const float* ebuf, int th, int k, ShiftTerm t, float* hbuf,
                                      float* out, int w) {
   for (int yy = 0; yy < th + k - 1; ++yy) {
-    const float* e = stage + size_t(yy) * kPitch;
+    const float* e = ebuf + size_t(yy) * kPitch;
     __m256 a[4];
     for (int q = 0; q < 4; ++q) a[q] = _mm256_setzero_ps();
     for (int i = 0; i < k; ++i)
@@ -326,10 +302,10 @@ SL_TARGET("avx2") void box_tile_avx2(const float* stage, int th, int k, ShiftTer
   }
 }
 
-SL_TARGET("avx512f") void box_tile_avx512(const float* stage, int th, int k, ShiftTerm t,
+SL_TARGET("avx512f") void box_tile_avx512(const float* ebuf, int th, int k, ShiftTerm t,
                                           float* hbuf, float* out, int w) {
   for (int yy = 0; yy < th + k - 1; ++yy) {
-    const float* e = stage + size_t(yy) * kPitch;
+    const float* e = ebuf + size_t(yy) * kPitch;
     __m512 a0 = _mm512_setzero_ps(), a1 = _mm512_setzero_ps();
     for (int i = 0; i < k; ++i) {
       a0 = _mm512_add_ps(a0, _mm512_loadu_ps(e + i));
@@ -418,7 +394,7 @@ size_t esm_float_tiles(const float* dist, int w, int h, int k, double c, bool si
   // columns and rows around them, clamped at the image's edges) whole: whole rows are read in
   // sequence, which the hardware prefetcher follows (and the next row is asked for a row ahead:
   // the render wrote the face long before), where a tile's 32 + k − 1 short rows a face's width
-  // apart stalled on every row. The tiles are then staged from that band, in cache.
+  // apart stalled on every row. The tiles then read that band, in cache.
   // + 8: the vector exponentials' last lanes (exp_rows) read up to 7 values past a row.
   const size_t band_pitch = size_t(w) + size_t(k) - 1 + 8;
   parallel_for_chunks(size_t(ty_n), 1, [&](size_t b0, size_t b1) {
@@ -443,9 +419,8 @@ size_t esm_float_tiles(const float* dist, int w, int h, int k, double c, bool si
           if (y_next != y)  // a prefetch changes no value
             prefetch_bytes(dist + size_t(y_next) * size_t(w) + size_t(in0),
                            size_t(in1 - in0) * sizeof(float));
-          float lo = 1.0f, hi = 0.0f;  // unused here: each tile finds its own
           stage_row(isa, dist + size_t(y) * size_t(w) + size_t(in0), in1 - in0, lead, width + 8,
-                    band + size_t(yy) * band_pitch, lo, hi);
+                    band + size_t(yy) * band_pitch);
         }
         for (int x0 = span.x0; x0 < span.x1; x0 += kTexelTile) {
           if (x0 + kTexelTile < span.x1)
