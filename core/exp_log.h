@@ -151,7 +151,8 @@ inline double exp_wide(float x) {
 }
 
 // ln m for float m in [0.75, 1.5): s = (m − 1)/(m + 1) (|s| <= 0.2), 2·atanh(s) to s^9
-// (truncation below 4e-9), in float. log_wide's and log_wide_f's mantissa step.
+// (truncation below 4e-9), in float. The mantissa step of log_wide and of the ESM filter's
+// float tiles (techniques/esm_float_tiles.cpp).
 inline float ln_m_f(float mf) {
   const float s = (mf - 1.0f) / (mf + 1.0f);
   const float s2 = s * s;
