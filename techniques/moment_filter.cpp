@@ -671,6 +671,32 @@ SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w
 // interleave4_row and the stream copy do in three passes over tmp rows, in one; the same bits
 // (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
 // first 64-byte line and after the last whole 16 go one by one in the same operations.
+// Four planes' 16 texels (m[c]: plane c, texels x .. x + 15) transposed to (m1 m2 m3 m4) per
+// texel and written as four 64-byte lines at out (64-byte aligned) with non-temporal stores.
+SL_TARGET("avx512f") inline void stream_transposed4_avx512(const __m512* m, float* out) {
+  // Within each 128-bit lane (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
+  // planes 2 3; u_i texel 4q + i's four moments in lane q.
+  // (The zero-masked forms with every lane on: GCC 12's unmasked ones trip
+  // -Wmaybe-uninitialized, as in core/exp_log.h.)
+  const __m512 t0 = _mm512_maskz_unpacklo_ps(0xFFFF, m[0], m[1]);
+  const __m512 t1 = _mm512_maskz_unpackhi_ps(0xFFFF, m[0], m[1]);
+  const __m512 t2 = _mm512_maskz_unpacklo_ps(0xFFFF, m[2], m[3]);
+  const __m512 t3 = _mm512_maskz_unpackhi_ps(0xFFFF, m[2], m[3]);
+  const __m512 u0 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0x44);
+  const __m512 u1 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0xEE);
+  const __m512 u2 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0x44);
+  const __m512 u3 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0xEE);
+  // Lanes regrouped: v0 = texels 0 4 1 5, v1 = 2 6 3 7, v2 = 8 12 9 13, v3 = 10 14 11 15.
+  const __m512 v0 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0x44);
+  const __m512 v1 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0x44);
+  const __m512 v2 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0xEE);
+  const __m512 v3 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0xEE);
+  _mm512_stream_ps(out, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0x88));       // 0–3
+  _mm512_stream_ps(out + 16, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD));  // 4–7
+  _mm512_stream_ps(out + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
+  _mm512_stream_ps(out + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
+}
+
 template <int K>
 SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
                                                      int w, float inv,
@@ -691,29 +717,91 @@ SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
       for (int j = 1; j < K; ++j) a = _mm512_add_ps(a, _mm512_loadu_ps(r[c * K + j] + x));
       m[c] = _mm512_mul_ps(a, vinv);
     }
-    // Within each 128-bit lane (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
-    // planes 2 3; u_i texel 4q + i's four moments in lane q.
-    // (The zero-masked forms with every lane on: GCC 12's unmasked ones trip
-    // -Wmaybe-uninitialized, as in core/exp_log.h.)
-    const __m512 t0 = _mm512_maskz_unpacklo_ps(0xFFFF, m[0], m[1]);
-    const __m512 t1 = _mm512_maskz_unpackhi_ps(0xFFFF, m[0], m[1]);
-    const __m512 t2 = _mm512_maskz_unpacklo_ps(0xFFFF, m[2], m[3]);
-    const __m512 t3 = _mm512_maskz_unpackhi_ps(0xFFFF, m[2], m[3]);
-    const __m512 u0 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0x44);
-    const __m512 u1 = _mm512_maskz_shuffle_ps(0xFFFF, t0, t2, 0xEE);
-    const __m512 u2 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0x44);
-    const __m512 u3 = _mm512_maskz_shuffle_ps(0xFFFF, t1, t3, 0xEE);
-    // Lanes regrouped: v0 = texels 0 4 1 5, v1 = 2 6 3 7, v2 = 8 12 9 13, v3 = 10 14 11 15.
-    const __m512 v0 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0x44);
-    const __m512 v1 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0x44);
-    const __m512 v2 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0xEE);
-    const __m512 v3 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0xEE);
-    _mm512_stream_ps(out + 4 * x, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0x88));  // 0–3
-    _mm512_stream_ps(out + 4 * x + 16, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD));  // 4–7
-    _mm512_stream_ps(out + 4 * x + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
-    _mm512_stream_ps(out + 4 * x + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
+    stream_transposed4_avx512(m, out + 4 * x);
   }
   for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
+}
+
+// One texel of hsum_powers_k: the new row's four sums at x (its heads and tails, the vector
+// steps' operations).
+template <int K>
+inline void hsum_powers_texel(const float* ext, int x, float* const* h) {
+  float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
+  for (int i = 0; i < K; ++i) {
+    const float d = ext[x + i], d2 = d * d;
+    s0 += d;
+    s1 += d2;
+    s2 += d2 * d;
+    s3 += d2 * d2;
+  }
+  h[0][x] = s0;
+  h[1][x] = s1;
+  h[2][x] = s2;
+  h[3][x] = s3;
+}
+
+// hsum_powers_k for the window's new bottom row (its sums into h[0..3]) and
+// msm_out_interleaved_avx512 for the output row above it, in one pass of 16 texels at a time:
+// rows[c·K + K − 1] is h[c], the K − 1 rows above it are read as before, and the new sums are
+// added last from registers (the row order of mean_out_k). The same operations, so the same
+// bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Why one pass: the
+// output's non-temporal stores (16 B a texel, ~35 MB a cube on the default scene) ran at the
+// machine's write bandwidth in a pass of their own while the row sums' pass wrote nothing; here
+// the arithmetic runs while the stores drain (README "Technique benchmark", seventeenth session).
+template <int K>
+SL_TARGET("avx512f") void msm_hsum_out_avx512(const float* ext, float* const* h,
+                                              const float* const* rows, int w, float inv,
+                                              float* out) {
+  const int head = texels_to_line(out, 4, w, w);
+  int x = 0;
+  for (; x < head; ++x) {
+    hsum_powers_texel<K>(ext, x, h);
+    msm_out_texel<K>(rows, x, inv, out);
+  }
+  const float* r[4 * K];
+  for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
+  const __m512 vinv = _mm512_set1_ps(inv);
+  for (; x + 16 <= w; x += 16) {
+    __m512 s[4] = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(),
+                   _mm512_setzero_ps()};
+    for (int i = 0; i < K; ++i) {
+      const __m512 d = _mm512_loadu_ps(ext + x + i), d2 = _mm512_mul_ps(d, d);
+      s[0] = _mm512_add_ps(s[0], d);
+      s[1] = _mm512_add_ps(s[1], d2);
+      s[2] = _mm512_add_ps(s[2], _mm512_mul_ps(d2, d));
+      s[3] = _mm512_add_ps(s[3], _mm512_mul_ps(d2, d2));
+    }
+    __m512 m[4];
+    for (int c = 0; c < 4; ++c) {
+      _mm512_storeu_ps(h[c] + x, s[c]);
+      __m512 a = s[c];
+      if constexpr (K > 1) {
+        a = _mm512_loadu_ps(r[c * K] + x);
+        for (int j = 1; j < K - 1; ++j) a = _mm512_add_ps(a, _mm512_loadu_ps(r[c * K + j] + x));
+        a = _mm512_add_ps(a, s[c]);
+      }
+      m[c] = _mm512_mul_ps(a, vinv);
+    }
+    stream_transposed4_avx512(m, out + 4 * x);
+  }
+  for (; x < w; ++x) {
+    hsum_powers_texel<K>(ext, x, h);
+    msm_out_texel<K>(rows, x, inv, out);
+  }
+}
+
+// The AVX2 form of stream_transposed4_avx512: 8 texels, two 64-byte lines.
+SL_TARGET("avx2") inline void stream_transposed4_avx2(const __m256* m, float* out) {
+  // Within each 128-bit half (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
+  // planes 2 3; u_i texel i's four moments in the low half, texel 4 + i's in the high one.
+  const __m256 t0 = _mm256_unpacklo_ps(m[0], m[1]), t1 = _mm256_unpackhi_ps(m[0], m[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(m[2], m[3]), t3 = _mm256_unpackhi_ps(m[2], m[3]);
+  const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+  const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+  _mm256_stream_ps(out, _mm256_permute2f128_ps(u0, u1, 0x20));       // texels 0 1
+  _mm256_stream_ps(out + 8, _mm256_permute2f128_ps(u2, u3, 0x20));   // 2 3
+  _mm256_stream_ps(out + 16, _mm256_permute2f128_ps(u0, u1, 0x31));  // 4 5
+  _mm256_stream_ps(out + 24, _mm256_permute2f128_ps(u2, u3, 0x31));  // 6 7
 }
 
 // The same in AVX2, 8 texels (one 4 × 8 transpose, two 64-byte lines of streamed stores) per
@@ -735,18 +823,52 @@ SL_TARGET("avx2") void msm_out_interleaved_avx2(const float* const* rows, int w,
       for (int j = 1; j < K; ++j) a = _mm256_add_ps(a, _mm256_loadu_ps(r[c * K + j] + x));
       m[c] = _mm256_mul_ps(a, vinv);
     }
-    // Within each 128-bit half (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
-    // planes 2 3; u_i texel i's four moments in the low half, texel 4 + i's in the high one.
-    const __m256 t0 = _mm256_unpacklo_ps(m[0], m[1]), t1 = _mm256_unpackhi_ps(m[0], m[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(m[2], m[3]), t3 = _mm256_unpackhi_ps(m[2], m[3]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
-    _mm256_stream_ps(out + 4 * x, _mm256_permute2f128_ps(u0, u1, 0x20));       // texels 0 1
-    _mm256_stream_ps(out + 4 * x + 8, _mm256_permute2f128_ps(u2, u3, 0x20));   // 2 3
-    _mm256_stream_ps(out + 4 * x + 16, _mm256_permute2f128_ps(u0, u1, 0x31));  // 4 5
-    _mm256_stream_ps(out + 4 * x + 24, _mm256_permute2f128_ps(u2, u3, 0x31));  // 6 7
+    stream_transposed4_avx2(m, out + 4 * x);
   }
   for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
+}
+
+// msm_hsum_out_avx512 in AVX2, 8 texels a step.
+template <int K>
+SL_TARGET("avx2") void msm_hsum_out_avx2(const float* ext, float* const* h,
+                                         const float* const* rows, int w, float inv,
+                                         float* out) {
+  const int head = texels_to_line(out, 4, w, w);
+  int x = 0;
+  for (; x < head; ++x) {
+    hsum_powers_texel<K>(ext, x, h);
+    msm_out_texel<K>(rows, x, inv, out);
+  }
+  const float* r[4 * K];
+  for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
+  const __m256 vinv = _mm256_set1_ps(inv);
+  for (; x + 8 <= w; x += 8) {
+    __m256 s[4] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(),
+                   _mm256_setzero_ps()};
+    for (int i = 0; i < K; ++i) {
+      const __m256 d = _mm256_loadu_ps(ext + x + i), d2 = _mm256_mul_ps(d, d);
+      s[0] = _mm256_add_ps(s[0], d);
+      s[1] = _mm256_add_ps(s[1], d2);
+      s[2] = _mm256_add_ps(s[2], _mm256_mul_ps(d2, d));
+      s[3] = _mm256_add_ps(s[3], _mm256_mul_ps(d2, d2));
+    }
+    __m256 m[4];
+    for (int c = 0; c < 4; ++c) {
+      _mm256_storeu_ps(h[c] + x, s[c]);
+      __m256 a = s[c];
+      if constexpr (K > 1) {
+        a = _mm256_loadu_ps(r[c * K] + x);
+        for (int j = 1; j < K - 1; ++j) a = _mm256_add_ps(a, _mm256_loadu_ps(r[c * K + j] + x));
+        a = _mm256_add_ps(a, s[c]);
+      }
+      m[c] = _mm256_mul_ps(a, vinv);
+    }
+    stream_transposed4_avx2(m, out + 4 * x);
+  }
+  for (; x < w; ++x) {
+    hsum_powers_texel<K>(ext, x, h);
+    msm_out_texel<K>(rows, x, inv, out);
+  }
 }
 #endif
 
@@ -786,9 +908,14 @@ SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
 // the span's input columns: the render wrote it long before (a face is larger than the caches),
 // and each span row starts a new stream the hardware prefetcher has not seen, so without the
 // hint the row makers wait on memory (a prefetch changes no value).
-template <class T = double, class HRow, class OutRow>
+// Optional new_row_out(y, row, span, dst, window, ext): where output row y's window has a new
+// bottom row (row = y + r, inside the face), makes that row's sums into dst (its ring slots, the
+// window's last row of each plane) and writes output row y in one pass, returning true; false
+// leaves both to hrow and out_row.
+template <class T = double, class HRow, class OutRow, class NewRowOut = std::nullptr_t>
 void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const float* src,
-               const HRow& hrow, const OutRow& out_row) {
+               const HRow& hrow, const OutRow& out_row, const NewRowOut& new_row_out = nullptr) {
+  constexpr bool has_new_row_out = !std::is_same_v<NewRowOut, std::nullptr_t>;
   const int r = k / 2;
   const int bands = (h + kTexelTile - 1) / kTexelTile;
   parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
@@ -814,16 +941,27 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
         int next = std::max(0, y0 - r);
         for (int y = y0; y < y1; ++y) {
           const int last = std::min(h - 1, y + r);
+          // The window's new bottom row, left to new_row_out.
+          const int defer = has_new_row_out && last == y + r ? last : -1;
           for (; next <= last; ++next) {
             if (next + 1 < h)
               prefetch_bytes(src + size_t(next + 1) * size_t(w) + size_t(cols.in0),
                              size_t(cols.in_n) * sizeof(float));
+            if (next == defer) break;
             for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(next, c);
             hrow(next, cols, dst.data(), ext);
           }
           for (int c = 0; c < planes; ++c)
             for (int j = -r; j <= r; ++j)
               window[size_t(c) * size_t(k) + size_t(j + r)] = slot(std::clamp(y + j, 0, h - 1), c);
+          if constexpr (has_new_row_out) {
+            if (next == defer) {
+              ++next;
+              for (int c = 0; c < planes; ++c) dst[size_t(c)] = slot(defer, c);
+              if (new_row_out(y, defer, cols, dst.data(), window.data(), ext)) continue;
+              hrow(defer, cols, dst.data(), ext);
+            }
+          }
           out_row(y, cols, window.data(), out);
         }
       }
@@ -1230,6 +1368,23 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
               // tmp: 8·n of its 10·w floats.
               for (int c = 0; c < 4; ++c) mean_out_k<K>(win + c * K, s.n, inv, row_of(c, y, s, tmp));
               finish(y, s, tmp);
+            },
+            [&](int y, int row, const SpanCols& s, float* const* dst, const float* const* win,
+                float* ext) {
+#if defined(__x86_64__)
+              if (isa == ExpPath::scalar) return false;
+              finite_row(dist + size_t(row) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead);
+              extend_span(ext, s, k);
+              float* const out_row =
+                  interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0));
+              if (isa == ExpPath::avx512)
+                msm_hsum_out_avx512<K>(ext, dst, win, s.n, inv, out_row);
+              else
+                msm_hsum_out_avx2<K>(ext, dst, win, s.n, inv, out_row);
+              return true;
+#else
+              return false;
+#endif
             });
       }))
     return;
