@@ -237,3 +237,13 @@ static inline void shadowlab_emulated_mask_storeu_epi32(void* p, simde__mmask8 k
 // 32-bit logical right shift, zero-masked (core/exp_log.h's log_split_f16), as the others.
 #undef _mm512_maskz_srli_epi32
 #define _mm512_maskz_srli_epi32(k, a, n) simde_mm512_maskz_mov_epi32((k), simde_mm512_srli_epi32((a), (n)))
+// Zero-masked 16-lane float load (the MSM filter's partial steps): only the selected lanes are
+// read, as the instruction reads nothing under a clear mask bit; the others are zero.
+static inline simde__m512 shadowlab_emulated_maskz_loadu_ps(simde__mmask16 k, const void* p) {
+  float f[16] = {};
+  for (int i = 0; i < 16; ++i)
+    if ((k >> i) & 1) __builtin_memcpy(&f[i], static_cast<const char*>(p) + 4 * i, 4);
+  return simde_mm512_loadu_ps(f);
+}
+#undef _mm512_maskz_loadu_ps
+#define _mm512_maskz_loadu_ps(k, p) shadowlab_emulated_maskz_loadu_ps((k), (p))

@@ -672,8 +672,8 @@ SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w
 // (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
 // first 64-byte line and after the last whole 16 go one by one in the same operations.
 // Four planes' 16 texels (m[c]: plane c, texels x .. x + 15) transposed to (m1 m2 m3 m4) per
-// texel and written as four 64-byte lines at out (64-byte aligned) with non-temporal stores.
-SL_TARGET("avx512f") inline void stream_transposed4_avx512(const __m512* m, float* out) {
+// texel: line[q] holds texels 4q .. 4q + 3, the q-th 64 bytes of the interleaved row.
+SL_TARGET("avx512f") inline void transpose4_avx512(const __m512* m, __m512* line) {
   // Within each 128-bit lane (texels 4q .. 4q + 3): t0, t1 planes 0 1 interleaved, t2, t3
   // planes 2 3; u_i texel 4q + i's four moments in lane q.
   // (The zero-masked forms with every lane on: GCC 12's unmasked ones trip
@@ -691,10 +691,18 @@ SL_TARGET("avx512f") inline void stream_transposed4_avx512(const __m512* m, floa
   const __m512 v1 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0x44);
   const __m512 v2 = _mm512_maskz_shuffle_f32x4(0xFFFF, u0, u1, 0xEE);
   const __m512 v3 = _mm512_maskz_shuffle_f32x4(0xFFFF, u2, u3, 0xEE);
-  _mm512_stream_ps(out, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0x88));       // 0–3
-  _mm512_stream_ps(out + 16, _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD));  // 4–7
-  _mm512_stream_ps(out + 32, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88));  // 8–11
-  _mm512_stream_ps(out + 48, _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD));  // 12–15
+  line[0] = _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0x88);  // texels 0–3
+  line[1] = _mm512_maskz_shuffle_f32x4(0xFFFF, v0, v1, 0xDD);  // 4–7
+  line[2] = _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0x88);  // 8–11
+  line[3] = _mm512_maskz_shuffle_f32x4(0xFFFF, v2, v3, 0xDD);  // 12–15
+}
+
+// The transposed 16 texels written as four 64-byte lines at out (64-byte aligned) with
+// non-temporal stores.
+SL_TARGET("avx512f") inline void stream_transposed4_avx512(const __m512* m, float* out) {
+  __m512 line[4];
+  transpose4_avx512(m, line);
+  for (int q = 0; q < 4; ++q) _mm512_stream_ps(out + 16 * q, line[q]);
 }
 
 template <int K>
@@ -722,8 +730,8 @@ SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
   for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
 }
 
-// One texel of hsum_powers_k: the new row's four sums at x (its heads and tails, the vector
-// steps' operations).
+// One texel of hsum_powers_k: the new row's four sums at x (the AVX2 form's heads and tails,
+// the vector steps' operations).
 template <int K>
 inline void hsum_powers_texel(const float* ext, int x, float* const* h) {
   float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
@@ -740,6 +748,58 @@ inline void hsum_powers_texel(const float* ext, int x, float* const* h) {
   h[3][x] = s3;
 }
 
+// 16 floats at p, or (Partial) the lanes in `lanes` with the others zero and unread.
+template <bool Partial>
+SL_TARGET("avx512f") inline __m512 load16(__mmask16 lanes, const float* p) {
+  if constexpr (Partial) return _mm512_maskz_loadu_ps(lanes, p);
+  else return _mm512_loadu_ps(p);
+}
+
+// One step of msm_hsum_out_avx512 over texels x .. x + n − 1 (n ≤ 16): all 16 with
+// non-temporal stores at a 64-byte aligned out, or (Partial) the first n lanes only, by masked
+// loads (which read nothing past a row's end) and masked ordinary stores at any alignment; the
+// lanes left out compute on zeros and are never stored, so each texel gets the same operations
+// whichever step it falls in.
+template <int K, bool Partial>
+SL_TARGET("avx512f") inline void msm_hsum_out_step16(const float* ext, float* const* h,
+                                                     const float* const* r, int x, int n,
+                                                     __m512 vinv, float* out) {
+  const __mmask16 lanes = Partial ? __mmask16((1u << n) - 1u) : __mmask16(0xFFFF);
+  __m512 s[4] = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(),
+                 _mm512_setzero_ps()};
+  for (int i = 0; i < K; ++i) {
+    const __m512 d = load16<Partial>(lanes, ext + x + i), d2 = _mm512_mul_ps(d, d);
+    s[0] = _mm512_add_ps(s[0], d);
+    s[1] = _mm512_add_ps(s[1], d2);
+    s[2] = _mm512_add_ps(s[2], _mm512_mul_ps(d2, d));
+    s[3] = _mm512_add_ps(s[3], _mm512_mul_ps(d2, d2));
+  }
+  __m512 m[4];
+  for (int c = 0; c < 4; ++c) {
+    if constexpr (Partial) _mm512_mask_storeu_ps(h[c] + x, lanes, s[c]);
+    else _mm512_storeu_ps(h[c] + x, s[c]);
+    __m512 a = s[c];
+    if constexpr (K > 1) {
+      a = load16<Partial>(lanes, r[c * K] + x);
+      for (int j = 1; j < K - 1; ++j)
+        a = _mm512_add_ps(a, load16<Partial>(lanes, r[c * K + j] + x));
+      a = _mm512_add_ps(a, s[c]);
+    }
+    m[c] = _mm512_mul_ps(a, vinv);
+  }
+  if constexpr (Partial) {
+    __m512 line[4];
+    transpose4_avx512(m, line);
+    // Line q holds texels 4q .. 4q + 3: the first min(4, n − 4q) of them, 4 floats each.
+    for (int q = 0; q < 4 && 4 * q < n; ++q) {
+      const int texels = std::min(4, n - 4 * q);
+      _mm512_mask_storeu_ps(out + 4 * x + 16 * q, __mmask16((1u << (4 * texels)) - 1u), line[q]);
+    }
+  } else {
+    stream_transposed4_avx512(m, out + 4 * x);
+  }
+}
+
 // hsum_powers_k for the window's new bottom row (its sums into h[0..3]) and
 // msm_out_interleaved_avx512 for the output row above it, in one pass of 16 texels at a time:
 // rows[c·K + K − 1] is h[c], the K − 1 rows above it are read as before, and the new sums are
@@ -752,42 +812,19 @@ template <int K>
 SL_TARGET("avx512f") void msm_hsum_out_avx512(const float* ext, float* const* h,
                                               const float* const* rows, int w, float inv,
                                               float* out) {
-  const int head = texels_to_line(out, 4, w, w);
-  int x = 0;
-  for (; x < head; ++x) {
-    hsum_powers_texel<K>(ext, x, h);
-    msm_out_texel<K>(rows, x, inv, out);
-  }
   const float* r[4 * K];
   for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
   const __m512 vinv = _mm512_set1_ps(inv);
-  for (; x + 16 <= w; x += 16) {
-    __m512 s[4] = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(),
-                   _mm512_setzero_ps()};
-    for (int i = 0; i < K; ++i) {
-      const __m512 d = _mm512_loadu_ps(ext + x + i), d2 = _mm512_mul_ps(d, d);
-      s[0] = _mm512_add_ps(s[0], d);
-      s[1] = _mm512_add_ps(s[1], d2);
-      s[2] = _mm512_add_ps(s[2], _mm512_mul_ps(d2, d));
-      s[3] = _mm512_add_ps(s[3], _mm512_mul_ps(d2, d2));
-    }
-    __m512 m[4];
-    for (int c = 0; c < 4; ++c) {
-      _mm512_storeu_ps(h[c] + x, s[c]);
-      __m512 a = s[c];
-      if constexpr (K > 1) {
-        a = _mm512_loadu_ps(r[c * K] + x);
-        for (int j = 1; j < K - 1; ++j) a = _mm512_add_ps(a, _mm512_loadu_ps(r[c * K + j] + x));
-        a = _mm512_add_ps(a, s[c]);
-      }
-      m[c] = _mm512_mul_ps(a, vinv);
-    }
-    stream_transposed4_avx512(m, out + 4 * x);
-  }
-  for (; x < w; ++x) {
-    hsum_powers_texel<K>(ext, x, h);
-    msm_out_texel<K>(rows, x, inv, out);
-  }
+  // Texels before the first 64-byte line of out (at most 3 on the map's 16-byte aligned rows),
+  // then whole lines, then the rest (a short span's is up to 15 of its texels: one by one, the
+  // scalar steps took ~15 % of the kernel's time on the default scene).
+  const int head = texels_to_line(out, 4, w, w);
+  int x = 0;
+  for (; x < head; x += 16)
+    msm_hsum_out_step16<K, true>(ext, h, r, x, std::min(16, head - x), vinv, out);
+  x = head;
+  for (; x + 16 <= w; x += 16) msm_hsum_out_step16<K, false>(ext, h, r, x, 16, vinv, out);
+  if (x < w) msm_hsum_out_step16<K, true>(ext, h, r, x, w - x, vinv, out);
 }
 
 // The AVX2 form of stream_transposed4_avx512: 8 texels, two 64-byte lines.
