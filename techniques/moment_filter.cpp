@@ -446,26 +446,31 @@ SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* 
   }
 }
 
+// One texel of hsum_powers_k: the four sums at x (also the fused AVX2 row's heads and tails).
+template <int K>
+inline void hsum_powers_texel(const float* ext, int x, float* const* h) {
+  float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
+  for (int i = 0; i < K; ++i) {
+    const float d = ext[x + i], d2 = d * d;
+    s0 += d;
+    s1 += d2;
+    s2 += d2 * d;
+    s3 += d2 * d2;
+  }
+  h[0][x] = s0;
+  h[1][x] = s1;
+  h[2][x] = s2;
+  h[3][x] = s3;
+}
+
 // MSM: h_c[x] = Σ_i d^(c+1) over ext[x .. x + K − 1] (ext: the clamped finite row), the powers
 // formed as power_row forms them (d² = d·d, d³ = d²·d, d⁴ = d²·d²) and each sum started from 0
 // and added in i order: hsum_k's sums of power_row's planes, without writing the planes.
 template <int K>
 SL_ROW_CLONES void hsum_powers_k(const float* ext, int w, float* h0, float* h1, float* h2,
                                  float* h3) {
-  for (int x = 0; x < w; ++x) {
-    float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
-    for (int i = 0; i < K; ++i) {
-      const float d = ext[x + i], d2 = d * d;
-      s0 += d;
-      s1 += d2;
-      s2 += d2 * d;
-      s3 += d2 * d2;
-    }
-    h0[x] = s0;
-    h1[x] = s1;
-    h2[x] = s2;
-    h3[x] = s3;
-  }
+  float* const h[4] = {h0, h1, h2, h3};
+  for (int x = 0; x < w; ++x) hsum_powers_texel<K>(ext, x, h);
 }
 
 // ESM: h[x] = Σ_i ext[x + i] (ext: the row's exponentials, extended).
@@ -728,24 +733,6 @@ SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
     stream_transposed4_avx512(m, out + 4 * x);
   }
   for (; x < w; ++x) msm_out_texel<K>(rows, x, inv, out);
-}
-
-// One texel of hsum_powers_k: the new row's four sums at x (the AVX2 form's heads and tails,
-// the vector steps' operations).
-template <int K>
-inline void hsum_powers_texel(const float* ext, int x, float* const* h) {
-  float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
-  for (int i = 0; i < K; ++i) {
-    const float d = ext[x + i], d2 = d * d;
-    s0 += d;
-    s1 += d2;
-    s2 += d2 * d;
-    s3 += d2 * d2;
-  }
-  h[0][x] = s0;
-  h[1][x] = s1;
-  h[2][x] = s2;
-  h[3][x] = s3;
 }
 
 // 16 floats at p, or (Partial) the lanes in `lanes` with the others zero and unread.
