@@ -669,13 +669,6 @@ SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w
 #endif
 
 #if defined(__x86_64__)
-// MSM's four planes' output row straight into the interleaved map: mean_out_k's float sums and
-// products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 16 texels at a time, transposed to
-// (m1 m2 m3 m4) per texel and written as four 64-byte lines with non-temporal stores (as
-// core/stream_copy.h writes them; the caller's fused_box fences). What mean_out_k,
-// interleave4_row and the stream copy do in three passes over tmp rows, in one; the same bits
-// (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
-// first 64-byte line and after the last whole 16 go one by one in the same operations.
 // Four planes' 16 texels (m[c]: plane c, texels x .. x + 15) transposed to (m1 m2 m3 m4) per
 // texel: line[q] holds texels 4q .. 4q + 3, the q-th 64 bytes of the interleaved row.
 SL_TARGET("avx512f") inline void transpose4_avx512(const __m512* m, __m512* line) {
@@ -710,6 +703,13 @@ SL_TARGET("avx512f") inline void stream_transposed4_avx512(const __m512* m, floa
   for (int q = 0; q < 4; ++q) _mm512_stream_ps(out + 16 * q, line[q]);
 }
 
+// MSM's four planes' output row straight into the interleaved map: mean_out_k's float sums and
+// products for planes c = 0..3 (rows[c·K .. c·K + K − 1]), 16 texels at a time, transposed to
+// (m1 m2 m3 m4) per texel and written as four 64-byte lines with non-temporal stores (as
+// core/stream_copy.h writes them; the caller's fused_box fences). What mean_out_k,
+// interleave4_row and the stream copy do in three passes over tmp rows, in one; the same bits
+// (tests: MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Texels before the
+// first 64-byte line and after the last whole 16 go one by one in the same operations.
 template <int K>
 SL_TARGET("avx512f") void msm_out_interleaved_avx512(const float* const* rows,
                                                      int w, float inv,
@@ -792,9 +792,9 @@ SL_TARGET("avx512f") inline void msm_hsum_out_step16(const float* ext, float* co
 // rows[c·K + K − 1] is h[c], the K − 1 rows above it are read as before, and the new sums are
 // added last from registers (the row order of mean_out_k). The same operations, so the same
 // bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Why one pass: the
-// output's non-temporal stores (16 B a texel, ~35 MB a cube on the default scene) ran at the
-// machine's write bandwidth in a pass of their own while the row sums' pass wrote nothing; here
-// the arithmetic runs while the stores drain (README "Technique benchmark", seventeenth session).
+// output's non-temporal stores (16 B a texel, ~35 MB a cube on the default scene) had a pass of
+// their own while the row sums' pass wrote nothing; here the arithmetic can run while they drain
+// (~8 % off the cube filter on Zen 5: README "Technique benchmark", seventeenth session).
 template <int K>
 SL_TARGET("avx512f") void msm_hsum_out_avx512(const float* ext, float* const* h,
                                               const float* const* rows, int w, float inv,
@@ -1368,13 +1368,17 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
     interleave4_row(tmp, s.n, row);
     copy(row, 4 * size_t(s.n), interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0)));
   };
+  // Row y's finite distances over the span's input columns, extended to its window (ext).
+  auto finite_ext = [&](int y, const SpanCols& s, float* ext) {
+    finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead);
+    extend_span(ext, s, k);
+  };
   if (fixed_kernels && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box<float>(
             w, h, k, 4, tiles, dist,
             [&](int y, const SpanCols& s, float* const* dst, float* ext) {
-              finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead);
-              extend_span(ext, s, k);
+              finite_ext(y, s, ext);
               hsum_powers_k<K>(ext, s.n, dst[0], dst[1], dst[2], dst[3]);
             },
             [&](int y, const SpanCols& s, const float* const* win, float* tmp) {
@@ -1397,8 +1401,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
                 float* ext) {
 #if defined(__x86_64__)
               if (isa == ExpPath::scalar) return false;
-              finite_row(dist + size_t(row) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead);
-              extend_span(ext, s, k);
+              finite_ext(row, s, ext);
               float* const out_row =
                   interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0));
               if (isa == ExpPath::avx512)
