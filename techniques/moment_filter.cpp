@@ -742,16 +742,15 @@ SL_TARGET("avx512f") inline __m512 load16(__mmask16 lanes, const float* p) {
   else return _mm512_loadu_ps(p);
 }
 
-// One step of msm_hsum_out_avx512 over texels x .. x + n − 1 (n ≤ 16): all 16 with
-// non-temporal stores at a 64-byte aligned out, or (Partial) the first n lanes only, by masked
-// loads (which read nothing past a row's end) and masked ordinary stores at any alignment; the
+// The four window means of texels x .. x + 15 for msm_hsum_out_avx512 (m[c]: plane c), the
+// window's new bottom row's sums stored into h[c] + x on the way; or (Partial) the lanes in
+// `lanes` only, by masked loads (which read nothing past a row's end) and masked stores. The
 // lanes left out compute on zeros and are never stored, so each texel gets the same operations
 // whichever step it falls in.
 template <int K, bool Partial>
-SL_TARGET("avx512f") inline void msm_hsum_out_step16(const float* ext, float* const* h,
-                                                     const float* const* r, int x, int n,
-                                                     __m512 vinv, float* out) {
-  const __mmask16 lanes = Partial ? __mmask16((1u << n) - 1u) : __mmask16(0xFFFF);
+SL_TARGET("avx512f") inline void msm_hsum_means16(const float* ext, float* const* h,
+                                                  const float* const* r, int x, __mmask16 lanes,
+                                                  __m512 vinv, __m512* m) {
   __m512 s[4] = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(),
                  _mm512_setzero_ps()};
   for (int i = 0; i < K; ++i) {
@@ -761,7 +760,6 @@ SL_TARGET("avx512f") inline void msm_hsum_out_step16(const float* ext, float* co
     s[2] = _mm512_add_ps(s[2], _mm512_mul_ps(d2, d));
     s[3] = _mm512_add_ps(s[3], _mm512_mul_ps(d2, d2));
   }
-  __m512 m[4];
   for (int c = 0; c < 4; ++c) {
     if constexpr (Partial) _mm512_mask_storeu_ps(h[c] + x, lanes, s[c]);
     else _mm512_storeu_ps(h[c] + x, s[c]);
@@ -774,16 +772,68 @@ SL_TARGET("avx512f") inline void msm_hsum_out_step16(const float* ext, float* co
     }
     m[c] = _mm512_mul_ps(a, vinv);
   }
-  if constexpr (Partial) {
+}
+
+// One 64-byte line of an interleaved output row (4 texels, first texel t0, which may lie before
+// the row: t0 < 0) at `line`: a non-temporal store when all four texels are in [0, n), else a
+// masked ordinary store of those that are (the rest of the line belongs to other texels).
+SL_TARGET("avx512f") inline void store_line4(float* line, int t0, int n, __m512 v) {
+  const int lo = std::max(t0, 0), hi = std::min(t0 + 4, n);
+  if (lo == t0 && hi == t0 + 4) {
+    _mm512_stream_ps(line, v);
+  } else if (lo < hi) {
+    const unsigned bits = ((1u << (4 * (hi - t0))) - 1u) & ~((1u << (4 * (lo - t0))) - 1u);
+    _mm512_mask_storeu_ps(line, __mmask16(bits), v);
+  }
+}
+
+// msm_hsum_out_avx512 for an output row whose texel 0 lies S texels (16·S bytes) past a 64-byte
+// line. The steps run at x = 0, 16, 32, …, so the ring's rows (64-byte aligned, fused_box) and
+// the extended input are read and written on whole lines; output line j (texels 4j − S ..
+// 4j − S + 3) is the last S texels of one transposed line and the first 4 − S of the next, one
+// valignd, and goes out whole (non-temporal) except at the row's two ends (store_line4).
+template <int K, int S>
+SL_TARGET("avx512f") void msm_hsum_out_lines(const float* ext, float* const* h,
+                                             const float* const* r, int w, __m512 vinv,
+                                             float* out) {
+  // The line holding texel t starts at byte address out + 16·(t − S) rounded to a line, i.e. at
+  // texel t's address less 16·S bytes for t ≡ S (mod 4). Addresses are formed as integers:
+  // the first line may begin before the map's storage (its lanes there are never stored).
+  const uintptr_t line0 = reinterpret_cast<uintptr_t>(out) - uintptr_t(16 * S);
+  auto line_at = [&](int t0) {  // t0 + S: a multiple of 4
+    return reinterpret_cast<float*>(line0 + uintptr_t(16 * (t0 + S)));
+  };
+  __m512 prev = _mm512_setzero_ps();  // the previous step's texels x − 4 .. x − 1
+  int x = 0;
+  for (; x < w; x += 16) {
+    __m512 m[4];
+    if (x + 16 <= w) {
+      msm_hsum_means16<K, false>(ext, h, r, x, __mmask16(0xFFFF), vinv, m);
+    } else {
+      msm_hsum_means16<K, true>(ext, h, r, x, __mmask16((1u << (w - x)) - 1u), vinv, m);
+    }
     __m512 line[4];
     transpose4_avx512(m, line);
-    // Line q holds texels 4q .. 4q + 3: the first min(4, n − 4q) of them, 4 floats each.
-    for (int q = 0; q < 4 && 4 * q < n; ++q) {
-      const int texels = std::min(4, n - 4 * q);
-      _mm512_mask_storeu_ps(out + 4 * x + 16 * q, __mmask16((1u << (4 * texels)) - 1u), line[q]);
+    for (int q = 0; q < 4; ++q) {
+      const int t0 = x + 4 * q - S;
+      if constexpr (S == 0) {
+        store_line4(line_at(t0), t0, w, line[q]);
+      } else {
+        // Texels t0 .. t0 + S − 1 from the transposed line before, the rest from line q.
+        const __m512 lo = q == 0 ? prev : line[q - 1];
+        const __m512 v = _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(
+            0xFFFF, _mm512_castps_si512(line[q]), _mm512_castps_si512(lo), 16 - 4 * S));
+        store_line4(line_at(t0), t0, w, v);
+      }
     }
-  } else {
-    stream_transposed4_avx512(m, out + 4 * x);
+    prev = line[3];
+  }
+  if constexpr (S != 0) {
+    // The line after the last step's: its first S texels (from the last transposed line).
+    const int t0 = x - S;
+    const __m512 v = _mm512_castsi512_ps(_mm512_maskz_alignr_epi32(
+        0xFFFF, _mm512_setzero_si512(), _mm512_castps_si512(prev), 16 - 4 * S));
+    store_line4(line_at(t0), t0, w, v);
   }
 }
 
@@ -802,16 +852,22 @@ SL_TARGET("avx512f") void msm_hsum_out_avx512(const float* ext, float* const* h,
   const float* r[4 * K];
   for (int j = 0; j < 4 * K; ++j) r[j] = rows[j];
   const __m512 vinv = _mm512_set1_ps(inv);
-  // Texels before the first 64-byte line of out (at most 3 on the map's 16-byte aligned rows),
-  // then whole lines, then the rest (a short span's is up to 15 of its texels: one by one, the
-  // scalar steps took ~15 % of the kernel's time on the default scene).
-  const int head = texels_to_line(out, 4, w, w);
-  int x = 0;
-  for (; x < head; x += 16)
-    msm_hsum_out_step16<K, true>(ext, h, r, x, std::min(16, head - x), vinv, out);
-  x = head;
-  for (; x + 16 <= w; x += 16) msm_hsum_out_step16<K, false>(ext, h, r, x, 16, vinv, out);
-  if (x < w) msm_hsum_out_step16<K, true>(ext, h, r, x, w - x, vinv, out);
+  // The map's storage is 16-byte aligned (glibc's), so texel 0 lies 0 to 3 texels past a line;
+  // storage that is not (never seen) goes one texel at a time.
+  const uintptr_t a = reinterpret_cast<uintptr_t>(out);
+  if (a % 16 != 0) {
+    for (int x = 0; x < w; ++x) {
+      hsum_powers_texel<K>(ext, x, h);
+      msm_out_texel<K>(rows, x, inv, out);
+    }
+    return;
+  }
+  switch ((a / 16) % 4) {
+    case 0: msm_hsum_out_lines<K, 0>(ext, h, r, w, vinv, out); break;
+    case 1: msm_hsum_out_lines<K, 1>(ext, h, r, w, vinv, out); break;
+    case 2: msm_hsum_out_lines<K, 2>(ext, h, r, w, vinv, out); break;
+    default: msm_hsum_out_lines<K, 3>(ext, h, r, w, vinv, out); break;
+  }
 }
 
 // The AVX2 form of stream_transposed4_avx512: 8 texels, two 64-byte lines.
@@ -943,12 +999,21 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
   const int r = k / 2;
   const int bands = (h + kTexelTile - 1) / kTexelTile;
   parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
-    // One uninitialized block: every value is written before it is read.
-    const size_t row_len = size_t(w), ew = size_t(w) + size_t(k) - 1;
+    // One uninitialized block, 64-byte aligned, its rows (row_len values) whole lines: the
+    // kernels' vector loads and stores at x = 0, 16, … of a row then never straddle two lines
+    // (with rows of w = 1030 floats, 24 bytes past a line each, every one of them did, and the
+    // MSM filter took ~10 % longer). Every value is written before it is read.
+    constexpr size_t kLine = 64 / sizeof(T);
+    const size_t row_len = (size_t(w) + kLine - 1) / kLine * kLine;
+    const size_t ew = (size_t(w) + size_t(k) - 1 + kLine - 1) / kLine * kLine;
     const size_t n_ring = size_t(k) * size_t(planes) * row_len;
     // out_row's scratch: (planes + 1) × w doubles' worth of bytes, whatever T.
     const size_t n_out = (size_t(planes) + 1) * row_len * (sizeof(double) / sizeof(T));
-    const std::unique_ptr<T[]> ring(new T[n_ring + size_t(planes) * ew + n_out]);
+    struct LineDelete {
+      void operator()(T* p) const { ::operator delete(p, std::align_val_t(64)); }
+    };
+    const std::unique_ptr<T[], LineDelete> ring(static_cast<T*>(
+        ::operator new((n_ring + size_t(planes) * ew + n_out) * sizeof(T), std::align_val_t(64))));
     T* const ext = ring.get() + n_ring;
     T* const out = ext + size_t(planes) * ew;
     auto slot = [&](int yy, int c) {
