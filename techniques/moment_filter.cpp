@@ -788,17 +788,16 @@ SL_TARGET("avx512f") inline void store_line4(float* line, int t0, int n, __m512 
 }
 
 // msm_hsum_out_avx512 for an output row whose texel 0 lies S texels (16·S bytes) past a 64-byte
-// line. The steps run at x = 0, 16, 32, …, so the ring's rows (64-byte aligned, fused_box) and
-// the extended input are read and written on whole lines; output line j (texels 4j − S ..
+// line. The steps run at x = 0, 16, 32, …, so the ring's rows (64-byte aligned, fused_box) are
+// read and written on whole lines; output line j (texels 4j − S ..
 // 4j − S + 3) is the last S texels of one transposed line and the first 4 − S of the next, one
 // valignd, and goes out whole (non-temporal) except at the row's two ends (store_line4).
 template <int K, int S>
 SL_TARGET("avx512f") void msm_hsum_out_lines(const float* ext, float* const* h,
                                              const float* const* r, int w, __m512 vinv,
                                              float* out) {
-  // The line holding texel t starts at byte address out + 16·(t − S) rounded to a line, i.e. at
-  // texel t's address less 16·S bytes for t ≡ S (mod 4). Addresses are formed as integers:
-  // the first line may begin before the map's storage (its lanes there are never stored).
+  // Line j starts at texel 4j − S's address (16 bytes a texel). Addresses are formed as
+  // integers: line 0 may begin before the map's storage (its lanes there are never stored).
   const uintptr_t line0 = reinterpret_cast<uintptr_t>(out) - uintptr_t(16 * S);
   auto line_at = [&](int t0) {  // t0 + S: a multiple of 4
     return reinterpret_cast<float*>(line0 + uintptr_t(16 * (t0 + S)));
@@ -1001,8 +1000,8 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
   parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
     // One uninitialized block, 64-byte aligned, its rows (row_len values) whole lines: the
     // kernels' vector loads and stores at x = 0, 16, … of a row then never straddle two lines
-    // (with rows of w = 1030 floats, 24 bytes past a line each, every one of them did, and the
-    // MSM filter took ~10 % longer). Every value is written before it is read.
+    // (with rows of w = 1030 floats, 24 bytes past a line each, every one of them did: README
+    // "Technique benchmark", eighteenth session). Every value is written before it is read.
     constexpr size_t kLine = 64 / sizeof(T);
     const size_t row_len = (size_t(w) + kLine - 1) / kLine * kLine;
     const size_t ew = (size_t(w) + size_t(k) - 1 + kLine - 1) / kLine * kLine;
@@ -1470,7 +1469,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
               float* const out_row =
                   interleaved->data() + 4 * (size_t(y) * size_t(w) + size_t(s.x0));
               // The pages output row y + 2 will be streamed into (core/prefetch.h): without the
-              // hint the cube filter took ~30 % longer on the default scene.
+              // hint the cube filter took ~40 % longer on the default scene.
               if (y + 2 < h) prefetch_pages(out_row + 8 * size_t(w), 16 * size_t(s.n));
               if (isa == ExpPath::avx512)
                 msm_hsum_out_avx512<K>(ext, dst, win, s.n, inv, out_row);
