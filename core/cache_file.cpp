@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace shadowlab {
 
@@ -50,14 +51,14 @@ void write_file_atomically(const std::string& dir, const std::string& path,
 }
 
 bool read_file_bytes(const std::string& path, size_t min_bytes, std::vector<char>& out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0 || size < std::streamoff(min_bytes)) return false;
-  in.seekg(0, std::ios::beg);
-  out.resize(static_cast<size_t>(size));
-  return bool(in.read(out.data(), size));
+  // Not a regular file (a FIFO would block, /dev/zero never end), over kCacheFileLimit,
+  // missing or unreadable: a miss, and the cache is recomputed.
+  try {
+    read_input_file(path, kCacheFileLimit, out);
+    return out.size() >= min_bytes;
+  } catch (const InputError&) {
+    return false;
+  }
 }
 
 bool folder_is_writable(const std::string& dir, std::string& reason) {

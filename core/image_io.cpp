@@ -24,6 +24,7 @@
 #include <stb_image_write.h>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/output_file.h"
 #include "core/texture.h"
 
@@ -43,12 +44,10 @@ const char* pixel_type_name(Imf::PixelType t) {
   }
 }
 
-// Fails with "cannot open: <strerror>" before OpenEXR gets a chance to word it differently.
-void require_readable(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::fclose(f);
-}
+// Fails with "cannot open: <strerror>", or for a path that is not a regular file of at most
+// kImageFileLimit, before OpenEXR opens it (which would wait on a FIFO, and word a directory
+// as a file that is not an EXR).
+void require_readable(const std::string& path) { check_input_file(path, kImageFileLimit); }
 
 // Writes one channel `name` of type `type` from a width × height plane of T.
 void add_attributes(Imf::Header& header, const ExrAttributes& attributes) {

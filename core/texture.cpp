@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 // The stb implementation lives in libstb.so (linked through PkgConfig::STB): declarations only.
 #include <stb_image.h>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace shadowlab {
 namespace {
@@ -29,8 +31,10 @@ std::array<float, 256> make_srgb_table() {
 }  // namespace
 
 std::pair<int, int> image_file_size(const std::string& path) {
-  FilePtr file(std::fopen(path.c_str(), "rb"));
+  InputFile checked(path, kTextureFileLimit);
+  FilePtr file(::fdopen(checked.fd(), "rb"));
   if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  checked.release();  // closed with `file`
   int w = 0, h = 0, comp = 0;
   if (!stbi_info_from_file(file.get(), &w, &h, &comp))
     throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
@@ -38,16 +42,16 @@ std::pair<int, int> image_file_size(const std::string& path) {
 }
 
 Texture8 load_texture8(const std::string& path) {
-  FilePtr file(std::fopen(path.c_str(), "rb"));
-  if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  const std::vector<unsigned char> bytes = read_input_bytes(path, kTextureFileLimit);
+  const int size = int(bytes.size());  // kTextureFileLimit is below INT_MAX
   int w = 0, h = 0, comp = 0;
-  if (!stbi_info_from_file(file.get(), &w, &h, &comp))
+  if (!stbi_info_from_memory(bytes.data(), size, &w, &h, &comp))
     throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
   if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
     throw InputError(path, "image size " + std::to_string(w) + "x" + std::to_string(h) +
                                " is outside [1, " + std::to_string(kMaxImageSide) + "]");
   int lw = 0, lh = 0, lcomp = 0;
-  stbi_uc* pixels = stbi_load_from_file(file.get(), &lw, &lh, &lcomp, 4);
+  stbi_uc* pixels = stbi_load_from_memory(bytes.data(), size, &lw, &lh, &lcomp, 4);
   if (!pixels) throw InputError(path, std::string("cannot decode image: ") + stbi_failure_reason());
   Texture8 tex;
   tex.width = lw;

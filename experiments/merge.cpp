@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "experiments/cli.h"
+#include "experiments/json_read.h"
 #include "experiments/provenance.h"
 #include "experiments/sweep.h"
 #include "experiments/tune_report.h"
@@ -65,12 +66,8 @@ int main(int argc, char** argv) {
     if (paths.empty()) throw InputError("merge", "give the shard files (tune_shardIofN.json)");
     std::vector<nlohmann::json> shards;
     for (const std::string& p : paths) {
-      std::ifstream in(p, std::ios::binary);
-      if (!in) throw InputError(p, "cannot open");
-      std::stringstream ss;
-      ss << in.rdbuf();
-      nlohmann::json j = nlohmann::json::parse(ss.str(), nullptr, false);
-      if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
+      nlohmann::json j = read_result_json(p);
+      if (!j.is_object()) throw InputError(p, "not a JSON object");
       shards.push_back(std::move(j));
     }
     make_output_dir(out, "--out");

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
+#include "experiments/json_read.h"
 
 #include "shadowlab_commit.h"  // SHADOWLAB_COMMIT, generated at build time
 
@@ -102,12 +103,8 @@ nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp,
 
 std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
                                             const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open (--from)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(ss.str(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("provenance") || !j["provenance"].is_object())
+  const nlohmann::json j = read_result_json(path);
+  if (!j.is_object() || !j.contains("provenance") || !j["provenance"].is_object())
     throw InputError(path, "has no provenance to repeat (a timing.json, sweep.json or tune.json of shadowlab 0.2 or later)");
   const nlohmann::json& p = j["provenance"];
   if (!p.contains("program") || !p["program"].is_string() || !p.contains("command") || !p["command"].is_array())

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <memory>
+#include <vector>
+
+#include <sys/stat.h>
 
 #include <glm/gtc/quaternion.hpp>
 #include <fmt/format.h>
@@ -12,6 +16,8 @@
 
 #include "core/text.h"
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/json_check.h"
 #include "core/parse_number.h"
 #include "scenes/scene_library.h"
 #include "core/slide.h"
@@ -79,7 +85,7 @@ class Loader {
     if (scene_index >= int(model_.scenes.size()))
       fail("the default scene " + std::to_string(scene_index) + " does not exist");
     visited_.assign(model_.nodes.size(), 0);
-    for (int root : model_.scenes[size_t(scene_index)].nodes) visit(s, root, dmat4(1.0), 0);
+    for (int root : model_.scenes[size_t(scene_index)].nodes) visit(s, root);
     if (s.meshes.empty()) fail("the scene has no triangles");
     for (Mesh& m : s.meshes)
       if (m.material < 0) m.material = default_material(s);
@@ -101,19 +107,72 @@ class Loader {
   void read_model() {
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(load_image, nullptr);
+    // Buffers and images named by URI are read through the same checks as the file itself.
+    ExternalFiles files{path_, nullptr};
+    gltf.SetFsCallbacks({&external_file_exists, &external_path, &read_external_file,
+                         &refuse_write, &files});
+    const std::vector<unsigned char> bytes = read_input_bytes(path_, kModelFileLimit);
+    const size_t slash = path_.find_last_of('/');
+    const std::string base_dir = slash == std::string::npos ? "" : path_.substr(0, slash);
     std::string err, warn;
     const std::string ext = ascii_lower(path_.substr(path_.find_last_of('.') + 1));
     bool ok = false;
-    // tinygltf reports a missing file in `err`; so does every schema failure.
-    if (ext == "glb")
-      ok = gltf.LoadBinaryFromFile(&model_, &err, &warn, path_);
-    else
-      ok = gltf.LoadASCIIFromFile(&model_, &err, &warn, path_);
+    // The JSON is checked (syntax, nesting, keys) before tinygltf, whose conversion of
+    // "extras" and "extensions" recurses once per level, parses it.
+    if (ext == "glb") {
+      check_glb_json(bytes);
+      ok = gltf.LoadBinaryFromMemory(&model_, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+    } else {
+      check_json_text(reinterpret_cast<const char*>(bytes.data()), bytes.size(), path_);
+      ok = gltf.LoadASCIIFromString(&model_, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                    unsigned(bytes.size()), base_dir);
+    }
+    if (files.failure) throw *files.failure;
     if (!ok || !err.empty())
       fail(err.empty() ? "cannot be read as glTF 2.0" : first_line(err));
     if (!warn.empty()) note(first_line(warn));
     if (model_.asset.version.rfind("2", 0) != 0)
       fail("asset version '" + model_.asset.version + "' is not glTF 2.x");
+  }
+
+  // The JSON chunk of a GLB (header: magic, version, length; then the chunk's length and
+  // type), as far as the file holds it; tinygltf refuses a malformed header itself.
+  void check_glb_json(const std::vector<unsigned char>& bytes) const {
+    if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0) return;
+    uint32_t chunk_length = 0;
+    std::memcpy(&chunk_length, bytes.data() + 12, 4);  // little-endian in the file and on x86-64
+    const size_t n = std::min<size_t>(chunk_length, bytes.size() - 20);
+    check_json_text(reinterpret_cast<const char*>(bytes.data()) + 20, n, path_);
+  }
+
+  // tinygltf's file access for URIs: existence only (the reader says what is wrong with a
+  // file that exists), paths as given (no expansion), reads checked as every input is; the
+  // first failure is kept whole and thrown after tinygltf returns, naming the file.
+  struct ExternalFiles {
+    std::string gltf_path;
+    std::unique_ptr<InputError> failure;
+  };
+  static bool external_file_exists(const std::string& path, void*) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0;
+  }
+  static std::string external_path(const std::string& path, void*) { return path; }
+  static bool read_external_file(std::vector<unsigned char>* out, std::string* err,
+                                 const std::string& path, void* user) {
+    auto* files = static_cast<ExternalFiles*>(user);
+    try {
+      *out = read_input_bytes(path, kModelFileLimit);
+      return true;
+    } catch (const InputError& e) {
+      if (!files->failure)
+        files->failure = std::make_unique<InputError>(path, e.reason + " (a URI of " + files->gltf_path + ")");
+      if (err) *err = e.reason;
+      return false;
+    }
+  }
+  static bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err = "writing is not supported";
+    return false;
   }
 
   // Local transform of a node: its matrix, or T·R·S.
@@ -136,27 +195,40 @@ class Loader {
     return m;
   }
 
-  void visit(Scene& s, int index, const dmat4& parent, int depth) {
-    if (index < 0 || index >= int(model_.nodes.size()))
-      fail("node " + std::to_string(index) + " does not exist");
-    if (visited_[size_t(index)])
-      fail("node " + std::to_string(index) + " is reached twice (a cycle, or two parents)");
-    visited_[size_t(index)] = 1;
-    const tinygltf::Node& n = model_.nodes[size_t(index)];
-    const dmat4 world = parent * local(n, index);
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r)
-        if (!std::isfinite(world[c][r]))
-          fail("node " + std::to_string(index) + " has a transform that is not finite");
-    if (n.mesh >= 0) add_mesh(s, n.mesh, world);
-    if (n.camera >= 0) placed_cameras_.push_back({n.camera, world});
-    const auto ext = n.extensions.find("KHR_lights_punctual");
-    if (ext != n.extensions.end() && ext->second.Has("light")) {
-      const tinygltf::Value& l = ext->second.Get("light");
-      if (!l.IsInt() && !l.IsNumber()) fail("node " + std::to_string(index) + ": KHR_lights_punctual.light is not a number");
-      placed_lights_.push_back({l.GetNumberAsInt(), world});
+  // Walks the hierarchy under `root` depth first, parents before children and children in
+  // order, with an explicit stack: a chain of nodes as deep as the file allows costs heap, not
+  // call stack. Every node is reached at most once (visited_), so the walk ends.
+  void visit(Scene& s, int root) {
+    struct Pending {
+      int index;
+      dmat4 parent;
+    };
+    std::vector<Pending> stack{{root, dmat4(1.0)}};
+    while (!stack.empty()) {
+      const Pending p = stack.back();
+      stack.pop_back();
+      const int index = p.index;
+      if (index < 0 || index >= int(model_.nodes.size()))
+        fail("node " + std::to_string(index) + " does not exist");
+      if (visited_[size_t(index)])
+        fail("node " + std::to_string(index) + " is reached twice (a cycle, or two parents)");
+      visited_[size_t(index)] = 1;
+      const tinygltf::Node& n = model_.nodes[size_t(index)];
+      const dmat4 world = p.parent * local(n, index);
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          if (!std::isfinite(world[c][r]))
+            fail("node " + std::to_string(index) + " has a transform that is not finite");
+      if (n.mesh >= 0) add_mesh(s, n.mesh, world);
+      if (n.camera >= 0) placed_cameras_.push_back({n.camera, world});
+      const auto ext = n.extensions.find("KHR_lights_punctual");
+      if (ext != n.extensions.end() && ext->second.Has("light")) {
+        const tinygltf::Value& l = ext->second.Get("light");
+        if (!l.IsInt() && !l.IsNumber()) fail("node " + std::to_string(index) + ": KHR_lights_punctual.light is not a number");
+        placed_lights_.push_back({l.GetNumberAsInt(), world});
+      }
+      for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world});
     }
-    for (int child : n.children) visit(s, child, world, depth + 1);
   }
 
   // Element bytes of an accessor component type; 0 when unknown.

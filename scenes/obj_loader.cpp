@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
@@ -26,27 +27,6 @@ namespace shadowlab {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Reads a whole file; on failure returns false and leaves the reason in *why.
-bool try_read_file(const std::string& path, std::string& out, std::string* why) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    *why = std::string("cannot open: ") + std::strerror(errno);
-    return false;
-  }
-  out.clear();
-  char buf[1 << 16];
-  size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
-  const bool failed = std::ferror(f) != 0;
-  const int err = errno;
-  std::fclose(f);
-  if (failed) {
-    *why = std::string("cannot read: ") + std::strerror(err);
-    return false;
-  }
-  return true;
-}
 
 // Drops a UTF-8 byte-order mark: tinyobjloader would read "\xEF\xBB\xBFv" as an unknown
 // statement and silently lose the first vertex.
@@ -75,7 +55,7 @@ class MtlReader : public tinyobj::MaterialReader {
                   std::string* err) override {
     const std::string path = resolve_path(obj_dir_, name);
     std::string text, why;
-    if (!try_read_file(path, text, &why)) {
+    if (!try_read_input_file(path, kMaterialFileLimit, text, &why)) {
       record(InputError(path, why + " (mtllib of " + obj_path_ + ")"));
       return false;
     }
@@ -379,8 +359,7 @@ class MaterialBuilder {
 
 Scene load_obj_scene(const std::string& path, std::vector<std::string>* notes_out) {
   const Notes notes{path, notes_out};
-  std::string text, why;
-  if (!try_read_file(path, text, &why)) throw InputError(path, why);
+  std::string text = read_input_file(path, kModelFileLimit);
   strip_bom(text);
   const ObjTextSummary summary = check_obj_text(path, text);
   for (const std::string& n : summary.notes) notes.add(n);
@@ -517,6 +496,7 @@ void check_view_header_line(const std::string& path, size_t line_no, const std::
 }  // namespace
 
 ObjViewHeader read_obj_view_header(const std::string& path) {
+  check_input_file(path, kModelFileLimit);
   std::ifstream in(path);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   ObjViewHeader h;

@@ -11,6 +11,8 @@
 
 #include "core/text.h"
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/json_check.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -22,8 +24,6 @@ namespace shadowlab {
 namespace {
 
 using nlohmann::json;
-
-constexpr size_t kMaxFileBytes = 1 << 20;
 
 // Reads the keys of one JSON object with their key path for errors ("camera.fov_deg").
 class Reader {
@@ -124,27 +124,9 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
     if (notes) notes->push_back(text);
     else std::cerr << "note: " << path << ": " << text << "\n";
   };
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open: " + std::string(std::strerror(errno)));
-  std::string text;
-  {
-    std::ostringstream ss;
-    char buf[65536];
-    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-      text.append(buf, size_t(in.gcount()));
-      if (text.size() > kMaxFileBytes)
-        throw InputError(path, "is over 1 MB; a scene file names its models rather than holding them");
-    }
-  }
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "JSON syntax error at byte " + std::to_string(e.byte));
-  } catch (const json::out_of_range&) {
-    // A number beyond double's range (nlohmann's error 406; found by fuzz_scene_file).
-    throw InputError(path, "a JSON number is out of range (beyond ±1.8e308)");
-  }
+  const std::string text = read_input_file(path, kSceneFileLimit);
+  check_json_text(text, path);  // syntax, nesting, duplicate keys: json::parse cannot fail after it
+  const json doc = json::parse(text);
   const Reader top(path, doc, "");
   top.only({"base", "models", "camera", "light", "projector", "ground"});
   if (!top.has("base") && !top.has("models")) top.fail("the file", "names neither a base scene nor models");
