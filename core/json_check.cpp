@@ -93,10 +93,13 @@ class JsonChecker {
     std::string p;
     for (size_t i = 0; i < frames_.size() && i < max_parts; ++i) {
       const Frame& f = frames_[i];
-      if (f.object) {
-        if (f.has_key) p += (p.empty() ? "" : ".") + printable(f.key);
-      } else if (f.index > 0) {
-        p += "[" + std::to_string(f.index - 1) + "]";
+      if (f.object && f.has_key) {
+        if (!p.empty()) p += '.';
+        p += printable(f.key);
+      } else if (!f.object && f.index > 0) {
+        p += '[';
+        p += std::to_string(f.index - 1);
+        p += ']';
       }
     }
     return p;
