@@ -1,8 +1,8 @@
 #pragma once
-// Checked reads of JSON files written by shadowlab and read back (merge, --from): the file
-// through core/input_file.h and core/json_check.h, then numbers: nlohmann's get<size_t>()
-// converts a float such as 1e30 with a plain cast (undefined behaviour) and wraps large
-// integers, so counts and indices are read through json_uint instead.
+// Checked reads of numbers from JSON files written by shadowlab and read back (merge, --from;
+// the files themselves through core/json_file.h): nlohmann's get<size_t>() converts a float
+// such as 1e30 with a plain cast (undefined behaviour) and wraps large integers, so counts and
+// indices are read through this instead.
 #include <cstdint>
 #include <string>
 
@@ -11,10 +11,6 @@
 #include "core/error.h"
 
 namespace shadowlab {
-
-// The JSON document in `path`: a regular file within kResultFileLimit whose text passes
-// check_json_text (syntax, nesting depth, no duplicate keys). Throws InputError naming `path`.
-nlohmann::json read_result_json(const std::string& path);
 
 // j[key] as a whole number in [0, max]; InputError(where, …) otherwise (missing, not an
 // integer, negative, too large).

@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "experiments/cli.h"
-#include "experiments/json_read.h"
+#include "core/json_file.h"
 #include "experiments/provenance.h"
 #include "experiments/sweep.h"
 #include "experiments/tune_report.h"
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     if (paths.empty()) throw InputError("merge", "give the shard files (tune_shardIofN.json)");
     std::vector<nlohmann::json> shards;
     for (const std::string& p : paths) {
-      nlohmann::json j = read_result_json(p);
+      nlohmann::json j = read_json_file(p, kResultFileLimit);
       if (!j.is_object()) throw InputError(p, "not a JSON object");
       shards.push_back(std::move(j));
     }

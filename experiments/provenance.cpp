@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
-#include "experiments/json_read.h"
+#include "core/json_file.h"
 
 #include "shadowlab_commit.h"  // SHADOWLAB_COMMIT, generated at build time
 
@@ -103,7 +103,15 @@ nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp,
 
 std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
                                             const std::vector<std::string>& overrides) {
-  const nlohmann::json j = read_result_json(path);
+  nlohmann::json j;
+  try {
+    j = read_json_file(path, kResultFileLimit);
+  } catch (const InputError& e) {
+    // Not JSON at all (an image, a CSV): say what --from wants.
+    if (e.reason.rfind("JSON syntax error", 0) != 0) throw;
+    throw InputError(path, "has no provenance to repeat (" + e.reason +
+                               "; a timing.json, sweep.json or tune.json of shadowlab 0.2 or later)");
+  }
   if (!j.is_object() || !j.contains("provenance") || !j["provenance"].is_object())
     throw InputError(path, "has no provenance to repeat (a timing.json, sweep.json or tune.json of shadowlab 0.2 or later)");
   const nlohmann::json& p = j["provenance"];

@@ -4,13 +4,13 @@
 # cores, on a working copy of its checked-in seed corpus (fuzz/corpus/<name>/). A crash, a hang
 # (> 10 s on one input) or an allocation over 2 GB stops the run with a non-zero exit and leaves
 # the input in that folder.
-# Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file]
+# Usage: bash fuzz/run.sh SECONDS [fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file fuzz_json]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-30}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_obj fuzz_spec fuzz_slide fuzz_exr fuzz_gltf fuzz_scene_file fuzz_json)
 bdir=${SHADOWLAB_FUZZ_BUILD:-build-fuzz}
 if [ -z "${SHADOWLAB_FUZZ_BUILD:-}" ]; then
   cxx=$(command -v clang++-14 || command -v clang++)

@@ -11,8 +11,7 @@
 
 #include "core/text.h"
 #include "core/error.h"
-#include "core/input_file.h"
-#include "core/json_check.h"
+#include "core/json_file.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -124,9 +123,7 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
     if (notes) notes->push_back(text);
     else std::cerr << "note: " << path << ": " << text << "\n";
   };
-  const std::string text = read_input_file(path, kSceneFileLimit);
-  check_json_text(text, path);  // syntax, nesting, duplicate keys: json::parse cannot fail after it
-  const json doc = json::parse(text);
+  const json doc = read_json_file(path, kSceneFileLimit);
   const Reader top(path, doc, "");
   top.only({"base", "models", "camera", "light", "projector", "ground"});
   if (!top.has("base") && !top.has("models")) top.fail("the file", "names neither a base scene nor models");
