@@ -160,8 +160,11 @@ class Loader {
   static bool read_external_file(std::vector<unsigned char>* out, std::string* err,
                                  const std::string& path, void* user) {
     auto* files = static_cast<ExternalFiles*>(user);
+    // Images go to stb_image through tinygltf as an int length: the PNG/JPEG limit.
+    const std::string ext = ascii_lower(path.substr(path.find_last_of('.') + 1));
+    const bool image = ext == "png" || ext == "jpg" || ext == "jpeg";
     try {
-      *out = read_input_bytes(path, kModelFileLimit);
+      *out = read_input_bytes(path, image ? kTextureFileLimit : kModelFileLimit);
       return true;
     } catch (const InputError& e) {
       if (!files->failure)
