@@ -3,9 +3,9 @@
 // EXRs, JSON results, caches) is opened here: it must be a regular file of at most a limit
 // that depends on its kind. The check runs on the open descriptor (fstat), so what is checked
 // is what is read; opening uses O_NONBLOCK, so a FIFO or a device is refused without waiting
-// for a writer. A directory, FIFO, socket or device never reaches a parser: read without
-// bound it used to hang (a FIFO), never end (/dev/zero) or ask for an absurd allocation (a
-// directory's size).
+// for a writer. A directory, FIFO, socket or device never reaches a parser: read as a file, a
+// FIFO blocks until a writer comes, /dev/zero never ends, and a directory's size is no length
+// of contents.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -36,8 +36,8 @@ std::string reference_mask() {
   return path;
 }
 
-// metric used to wait forever on a FIFO (the feeder ends that wait: the test is bounded on
-// any code).
+// A blocking open of a FIFO waits for a writer (the feeder is one: the test is bounded on any
+// code).
 TEST(InputFilesMains, MetricRefusesAFifoWithoutWaiting) {
   const std::string ref = reference_mask();
   test::FifoFeeder fifo(scratch("test_fifo.exr"));
@@ -46,7 +46,7 @@ TEST(InputFilesMains, MetricRefusesAFifoWithoutWaiting) {
   fifo.release();
 }
 
-// A folder given as an EXR used to be "is not an EXR file".
+// A folder given as an EXR is not a regular file (rather than "not an EXR file").
 TEST(InputFilesMains, MetricNamesAFolderAsNotARegularFile) {
   const std::string ref = reference_mask();
   const std::string dir = scratch("folder.exr");
@@ -54,7 +54,7 @@ TEST(InputFilesMains, MetricNamesAFolderAsNotARegularFile) {
   expect_clear_error("metric " + dir + " " + ref, dir + ": is a directory, not a regular file");
 }
 
-// --scene /dev/zero used to be read without bound (as an OBJ).
+// --scene /dev/zero is refused before it is read (as an OBJ, without end).
 TEST(InputFilesMains, SceneThatIsADeviceIsRefusedBeforeReading) {
   expect_clear_error("render --technique csm --width 16 --height 12 --out " + scratch("out_zero") +
                          " --scene /dev/zero",

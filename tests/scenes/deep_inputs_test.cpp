@@ -58,7 +58,7 @@ test::GltfWriter one_triangle() {
 std::string deep_arrays(int depth) { return std::string(size_t(depth), '[') + std::string(size_t(depth), ']'); }
 
 // 50,000 nodes, each the only child of the one before and translated by (1, 0, 0); the last
-// holds the triangle, so its corners move by (50000, 0, 0). A recursive walk overflowed the
+// holds the triangle, so its corners move by (50000, 0, 0). A recursive walk overflows the
 // stack at about 20,000 levels.
 TEST(DeepInputs, GltfNodeChainFarDeeperThanTheStackLoads) {
   constexpr int kDepth = 50000;
@@ -84,7 +84,7 @@ TEST(DeepInputs, GltfNodeChainFarDeeperThanTheStackLoads) {
   EXPECT_EQ(s.meshes[0].positions[2], vec3(kDepth, 0, 1));
 }
 
-// 20,000 arrays nested in "extras" (tinygltf's conversion recursed once per level): refused
+// 20,000 arrays nested in "extras" (tinygltf converts them with one call per level): refused
 // by the depth scan, naming the file and the limit.
 TEST(DeepInputs, GltfExtrasNestedBeyondTheLimitAreRefused) {
   test::GltfWriter w = one_triangle();
@@ -123,8 +123,8 @@ TEST(DeepInputs, GlbJsonNestedBeyondTheLimitIsRefused) {
   EXPECT_EQ(e.rfind(path + ": JSON nesting deeper than 64 levels at extras[0][0]", 0), 0u) << e;
 }
 
-// A buffer "uri": "." names the glTF's folder: one InputError naming it (it used to end in
-// std::bad_alloc from the folder's size, without a file name).
+// A buffer "uri": "." names the glTF's folder: one InputError naming it (tinygltf's own reader
+// takes the folder's size as a length: std::bad_alloc, without a file name).
 TEST(DeepInputs, GltfBufferUriNamingAFolderIsRefused) {
   test::GltfWriter w = one_triangle();
   w.json["nodes"] = json::array({{{"mesh", 0}}});
@@ -158,7 +158,7 @@ TEST(DeepInputs, SceneFileNestedBeyondTheLimitIsRefused) {
   EXPECT_EQ(e.rfind(path + ": JSON nesting deeper than 64 levels at camera[0][0]", 0), 0u) << e;
 }
 
-// A key given twice used to be accepted (the last one won, silently).
+// A key given twice is refused (nlohmann would keep the last one, silently).
 TEST(DeepInputs, SceneFileDuplicateKeysAreRefused) {
   const std::string top = write_text("dup_top.json", R"({"base": "plane", "base": "default"})");
   EXPECT_EQ(input_error([&] { load_scene_file(top, nullptr); }),
