@@ -79,8 +79,14 @@ struct CommonOptions {
   std::optional<double> projector_fov, projector_aspect;
   std::optional<double> max_memory_gb;
   std::string out;  // out/PROGRAM unless given
+  // The image size without --width/--height when the program has its own (set_default_size);
+  // 0: the scene camera's.
+  int default_width = 0, default_height = 0;
 };
 void add_common_options(CommandLine& cl, CommonOptions& o);
+// The program's own image size without --width/--height (instead of the scene camera's): set
+// in o, applied by scene_from_options, and stated as the default in --help.
+void set_default_size(CommandLine& cl, CommonOptions& o, int width, int height, const std::string& why);
 // Every common flag but --threads (the ones that describe a scene, its view, memory and output).
 std::vector<std::string> common_scene_flags();
 

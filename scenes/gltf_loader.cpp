@@ -12,6 +12,7 @@
 
 #include "core/text.h"
 #include "core/error.h"
+#include "core/notes.h"
 #include "core/parse_number.h"
 #include "scenes/scene_library.h"
 #include "core/slide.h"
@@ -95,7 +96,7 @@ class Loader {
   [[noreturn]] void fail(const std::string& reason) const { throw InputError(path_, reason); }
   void note(const std::string& text) {
     if (notes_) notes_->push_back(text);
-    else std::cerr << "warning: " << path_ << ": " << text << "\n";
+    else hold_note("warning: " + path_ + ": " + text);
   }
 
   void read_model() {
@@ -553,7 +554,7 @@ Scene make_gltf_scene(const std::string& path, const GltfChoice& choice,
   Scene s = loader.load(choice, &c);
   auto say = [&](const std::string& text) {
     if (notes) notes->push_back(text);
-    else std::cerr << "note: " << path << ": " << text << "\n";
+    else hold_note("note: " + path + ": " + text);
   };
   const vec3 light_pos = s.light.position;
   const float radius = s.light.radius;

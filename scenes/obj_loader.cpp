@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/notes.h"
 #include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
@@ -129,7 +130,7 @@ struct Notes {
     if (out)
       out->push_back(note);
     else
-      std::cerr << "warning: " << path << ": " << note << "\n";
+      hold_note("warning: " + path + ": " + note);
   }
 };
 

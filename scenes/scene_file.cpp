@@ -11,6 +11,7 @@
 
 #include "core/text.h"
 #include "core/error.h"
+#include "core/notes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -122,7 +123,7 @@ bool is_scene_file_path(const std::string& path) {
 Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) {
   auto note = [&](const std::string& text) {
     if (notes) notes->push_back(text);
-    else std::cerr << "note: " << path << ": " << text << "\n";
+    else hold_note("note: " + path + ": " + text);
   };
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open: " + std::string(std::strerror(errno)));

@@ -401,9 +401,10 @@ TEST(Mains, SweepInputsAreCheckedBeforeAnyWork) {
   const std::string out = test::binary_path("sweep_checks_out");
   std::filesystem::remove_all(out);
   const std::string base = "resolution_sweep --quick --out " + out;
-  expect_clear_error(base + " --techniques ''", "--techniques: empty name");
-  expect_clear_error(base + " --techniques ,,", "--techniques: empty name");
-  expect_clear_error(base + " --techniques csm,,tsm", "--techniques: empty name");
+  expect_clear_error(base + " --techniques ''", "--techniques: is empty");
+  expect_clear_error(base + " --techniques ,,", "--techniques: ',,': item 1 of 3 is empty (a comma before the first spec)");
+  expect_clear_error(base + " --techniques csm,,tsm", "--techniques: 'csm,,tsm': item 2 of 3 is empty (two commas in a row)");
+  expect_clear_error(base + " --techniques csm,", "--techniques: 'csm,': item 2 of 2 is empty (a comma after the last spec)");
   expect_clear_error(base + " --techniques csm,csm", "given twice");
   expect_clear_error(base + " --resolutions 64,64", "given twice");
   expect_clear_error(base + " --resolutions 64,", "--resolutions");
