@@ -456,6 +456,9 @@ class Loader {
         if (!(rv >= 0.0 && rv < 1e6)) fail(name + ": extras.radius " + std::to_string(rv) + " is outside [0, 1e6) m");
         s.light.radius = float(rv);
       }
+      // KHR_lights_punctual: range > 0, or absent (tinygltf's 0) for no limit.
+      if (l.range < 0.0 || std::isnan(l.range))
+        fail(name + ": range " + fmt::format("{}", l.range) + " is not positive (give range > 0, or none for no limit)");
       if (l.range > 0.0) {
         if (!(l.range < 1e9)) fail(name + ": range is too large");
         s.light.far = float(l.range);

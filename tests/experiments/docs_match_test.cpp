@@ -70,7 +70,7 @@ void registry_layouts_filters(std::set<std::string>& layouts, std::set<std::stri
 TEST(DocsMatch, ReadmeSceneListIsEveryBuiltInScene) {
   const std::string line = readme_line("- `--scene S`:");
   ASSERT_FALSE(line.empty()) << "README has no '- `--scene S`:' line";
-  const size_t open = line.find("a built-in name ("), close = line.find(')', open);
+  const size_t open = line.find("a built-in name ("), close = line.find(';', open);
   ASSERT_NE(open, std::string::npos) << line;
   const std::set<std::string> listed = backticked(line.substr(open, close - open));
   const std::vector<std::string> names = builtin_scene_names();

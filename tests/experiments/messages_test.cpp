@@ -52,6 +52,7 @@ TEST(Messages, NotesNeverPrecedeAnError) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(r.err.find("note:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("range.gltf: light 0: range -1 is not positive"), std::string::npos) << r.err;
 }
 
 // A shard file without "kind", and one whose field has the wrong type: one line naming the file
