@@ -233,13 +233,14 @@ Box label_box(double x, double y, const std::string& text) {
   return {x, y - kLabelAscent, x + kLabelCharWidth * double(text.size()), y + kLabelDescent};
 }
 
-// Where a front point's label goes: the first of eight spots around the marker (right, then
-// left; above, below, then further out) whose box stays in the plot area and overlaps no label
-// placed before; false when none does (the legend and the CSV still name the point).
+// Where a front point's label goes: the first of eight spots beside its ring (right, then
+// left; above, below, then further out) whose box stays in the plot area and overlaps no box in
+// `placed` (the front's rings, the labels placed before); false when none does (the legend and
+// the CSV still name the point).
 bool place_label(const Panel& p, double px, double py, const std::string& text,
                  std::vector<Box>& placed, double& x, double& y) {
   const double w = kLabelCharWidth * double(text.size());
-  const double dxs[2] = {7.0, -7.0 - w};
+  const double dxs[2] = {kRingRadius + 1.0, -kRingRadius - 1.0 - w};
   const double dys[4] = {-6.0, 13.0, -18.0, 25.0};
   for (double dy : dys)
     for (double dx : dxs) {
@@ -388,7 +389,11 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
     // Labels for the front's points only (the rest are told apart by the legend): at 18
     // techniques x 4 resolutions a label per point would pile into an unreadable block. Each
     // goes where it overlaps no other; one that fits nowhere is left out.
+    // The front's rings are in the way too: a label over a ring hides which point it marks.
     std::vector<Box> placed;
+    for (size_t i : order)
+      placed.push_back({p.px(cost[i]) - kRingRadius, p.py(score[i]) - kRingRadius,
+                        p.px(cost[i]) + kRingRadius, p.py(score[i]) + kRingRadius});
     for (size_t i : order) {
       double x = 0.0, y = 0.0;
       if (place_label(p, p.px(cost[i]), p.py(score[i]), points[i].label, placed, x, y))
