@@ -110,6 +110,9 @@ uint64_t max_memory_bytes(const CommonOptions& o);
 
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
 // other exception → exit code 1. --list-techniques and --version anywhere print and exit 0.
+// First the SHADOWLAB_ variables are checked (experiments/environment.h); --from FILE (or
+// --from=FILE) is replaced by the recorded arguments. Notes held while the inputs were read
+// (core/notes.h) are printed after a successful body and dropped on an error.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);
 
 // --shard i/N: 0 <= i < N <= 100000, else InputError("--shard", …).
