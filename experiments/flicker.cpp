@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     write_text_file(common.out + "/flicker.json", j.dump(2) + "\n");
     write_png_grey(common.out + "/flicker_worst.png", flicker_strip(scene, c, r.step, *worst, strip, 2));
     std::printf("worst: %s (excess %.5f, frame %d); wrote %s/flicker.csv, flicker.json, flicker_worst.png "
-                "(its frame differences, top, above the reference's)\n",
+                "(the technique's frame differences above the reference's, each row labelled)\n",
                 worst->spec.c_str(), worst->excess, worst->worst_frame, common.out.c_str());
     return 0;
   });
