@@ -12,15 +12,17 @@
 #include <tbb/task_arena.h>
 
 #include "core/error.h"
+#include "core/parse_number.h"
 
 namespace shadowlab {
 namespace {
 
 int initial_thread_count() {
   if (const char* env = std::getenv("SHADOWLAB_THREADS"); env && *env) {
-    char* end = nullptr;
-    const long n = std::strtol(env, &end, 10);
-    if (*end != '\0' || n < 1 || n > 1024)
+    // The rules of --threads (core/parse_number.h: no spaces, no '+'); the programs check the
+    // variable before any work (experiments/environment.h), this guards every other caller.
+    long n = 0;
+    if (!parse_long(env, n) || n < 1 || n > 1024)
       throw InputError("SHADOWLAB_THREADS", std::string("expected an integer in [1, 1024], got '") +
                                                 env + "'");
     return int(n);

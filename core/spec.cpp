@@ -11,7 +11,8 @@ Spec parse_spec(const std::string& text, const std::string& flag) {
   Spec spec;
   const size_t colon = text.find(':');
   spec.name = text.substr(0, colon);
-  if (spec.name.empty()) throw InputError(flag, "empty name in '" + text + "'");
+  if (text.empty()) throw InputError(flag, "empty spec (expected NAME or NAME:key=value,...)");
+  if (spec.name.empty()) throw InputError(flag, "no name before ':' in '" + text + "'");
   if (colon != std::string::npos) {
     const std::string rest = text.substr(colon + 1);
     size_t pos = 0;
@@ -56,6 +57,21 @@ std::vector<std::string> split_spec_list(const std::string& text) {
     pos = comma + 1;
   }
   return out;
+}
+
+std::vector<std::string> spec_list_items(const std::string& text, const std::string& flag) {
+  if (text.empty()) throw InputError(flag, "is empty (expected specs separated by commas)");
+  const std::vector<std::string> items = split_spec_list(text);
+  const size_t n = items.size();
+  for (size_t i = 0; i < n; ++i)
+    if (items[i].empty())
+      throw InputError(flag, "'" + text + "': item " + std::to_string(i + 1) + " of " +
+                                 std::to_string(n) + " is empty (" +
+                                 (i == 0       ? "a comma before the first spec"
+                                  : i + 1 == n ? "a comma after the last spec"
+                                               : "two commas in a row") +
+                                 ")");
+  return items;
 }
 
 SpecReader::SpecReader(const Spec& spec, std::string flag)

@@ -24,6 +24,10 @@ std::string spec_text(const Spec& spec);
 // {"csm:res=64,pcf=3", "rt"}. Empty items are kept ("csm,,rt" → {"csm", "", "rt"}) so that
 // parse_spec rejects them.
 std::vector<std::string> split_spec_list(const std::string& text);
+// split_spec_list for a flag's list: an empty list or an empty item is an InputError naming the
+// item by its position and the comma that made it ("'csm,': item 2 of 2 is empty (a comma
+// after the last spec)").
+std::vector<std::string> spec_list_items(const std::string& text, const std::string& flag);
 
 // Typed accessors over a spec's params, each checking the range and naming the spec in errors.
 // The key is marked as used; reject_unknown() throws for any param no accessor asked for.

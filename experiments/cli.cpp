@@ -1,4 +1,5 @@
 #include "experiments/cli.h"
+#include "experiments/environment.h"
 #include "experiments/provenance.h"
 
 #include <malloc.h>
@@ -15,6 +16,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/notes.h"
 #include "scenes/obj_loader.h"
 #include "core/parallel.h"
 #include "core/parse_number.h"
@@ -130,7 +132,7 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
   // in shadowlab's one-line form.
   app.allow_extras(true);
   app.get_formatter()->column_width(28);
-  app.footer("techniques (a layout letter c/t/p + a filter sm/vsm/esm/evsm/msm/pcss; spec NAME:key=value,...):\n" +
+  app.footer("techniques (" + technique_naming_text() + ", or rt; spec NAME:key=value,...):\n" +
              technique_list_text());
   return cl;
 }
@@ -258,6 +260,13 @@ void add_common_options(CommandLine& cl, CommonOptions& o) {
   add_double(cl, "--projector-aspect", "A", "projector slide width / height (default 1)", o.projector_aspect, 0.05, 20.0);
   add_double(cl, "--max-memory", "GB", "refuse runs estimated to need more memory (default: what the machine has available)", o.max_memory_gb, 1e-6, 1e6);
   add_text(cl, "--out", "DIR", "output folder (default " + o.out + ")", o.out);
+}
+
+void set_default_size(CommandLine& cl, CommonOptions& o, int width, int height, const std::string& why) {
+  o.default_width = width;
+  o.default_height = height;
+  cl.app->get_option("--width")->description("image width in pixels (default " + std::to_string(width) + ": " + why + ")");
+  cl.app->get_option("--height")->description("image height in pixels (default " + std::to_string(height) + ")");
 }
 
 std::vector<std::string> common_scene_flags() {
@@ -399,8 +408,8 @@ Scene scene_from_options(const CommonOptions& o) {
                                            : make_builtin_scene(name);
   if (o.ground) add_ground_plane(scene);
   Camera& cam = scene.camera;
-  cam.width = o.width.value_or(cam.width);
-  cam.height = o.height.value_or(cam.height);
+  cam.width = o.width.value_or(o.default_width > 0 ? o.default_width : cam.width);
+  cam.height = o.height.value_or(o.default_height > 0 ? o.default_height : cam.height);
   cam.eye = o.eye.value_or(cam.eye);
   cam.target = o.target.value_or(cam.target);
   if (o.fov) cam.fov_y_deg = float(*o.fov);
@@ -429,18 +438,32 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
   std::vector<std::string> from_args;
   std::vector<char*> from_argv;
   try {
+    check_environment();
     const bool repeatable =
         std::find(std::begin(kRepeatable), std::end(kRepeatable), prog) != std::end(kRepeatable);
-    for (int i = 1; i < argc && repeatable; ++i)
-      if (std::string(argv[i]).rfind("--from=", 0) == 0)
-        throw InputError("--from", "give the file as a separate word: --from FILE.json");
-    for (int i = 1; i < argc && repeatable; ++i)
-      if (std::string(argv[i]) == "--from") {
-        if (i + 1 >= argc) throw InputError("--from", "needs a file (a timing.json, sweep.json or tune.json)");
+    // --from FILE and --from=FILE alike (the README: --flag=value works for every flag); the
+    // words beside it (--out, --threads) in either form too.
+    std::vector<std::string> words;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      const size_t eq = a.find('=');
+      const std::string name = a.substr(0, eq);
+      if (repeatable && eq != std::string::npos && a.rfind("--", 0) == 0 &&
+          (name == "--from" || name == "--out" || name == "--threads")) {
+        words.push_back(name);
+        words.push_back(a.substr(eq + 1));
+      } else {
+        words.push_back(a);
+      }
+    }
+    for (size_t i = 0; i < words.size() && repeatable; ++i)
+      if (words[i] == "--from") {
+        if (i + 1 >= words.size() || words[i + 1].empty())
+          throw InputError("--from", "needs a file (a timing.json, sweep.json or tune.json)");
         std::vector<std::string> rest;
-        for (int k = 1; k < argc; ++k)
-          if (k != i && k != i + 1) rest.push_back(argv[k]);
-        from_args = arguments_from_run(prog, argv[i + 1], rest);
+        for (size_t k = 0; k < words.size(); ++k)
+          if (k != i && k != i + 1) rest.push_back(words[k]);
+        from_args = arguments_from_run(prog, words[i + 1], rest);
         from_args.insert(from_args.begin(), argv[0]);
         for (std::string& a : from_args) from_argv.push_back(a.data());
         from_argv.push_back(nullptr);
@@ -462,8 +485,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
         return 0;
       }
     }
-    return body(argc, argv);
+    const int status = body(argc, argv);
+    print_notes();
+    return status;
   } catch (const InputError& e) {
+    take_notes();  // the error is the only line
     // One prefix: an error whose source is the program itself ("metric") is not named twice.
     if (e.where == prog)
       std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.reason.c_str());
@@ -471,6 +497,7 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
       std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {
+    take_notes();
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
     return 1;
   }

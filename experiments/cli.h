@@ -79,8 +79,14 @@ struct CommonOptions {
   std::optional<double> projector_fov, projector_aspect;
   std::optional<double> max_memory_gb;
   std::string out;  // out/PROGRAM unless given
+  // The image size without --width/--height when the program has its own (set_default_size);
+  // 0: the scene camera's.
+  int default_width = 0, default_height = 0;
 };
 void add_common_options(CommandLine& cl, CommonOptions& o);
+// The program's own image size without --width/--height (instead of the scene camera's): set
+// in o, applied by scene_from_options, and stated as the default in --help.
+void set_default_size(CommandLine& cl, CommonOptions& o, int width, int height, const std::string& why);
 // Every common flag but --threads (the ones that describe a scene, its view, memory and output).
 std::vector<std::string> common_scene_flags();
 
@@ -104,6 +110,9 @@ uint64_t max_memory_bytes(const CommonOptions& o);
 
 // Runs body; InputError → "<program>: <flag/file>: <reason>" on stderr and exit code 2; any
 // other exception → exit code 1. --list-techniques and --version anywhere print and exit 0.
+// First the SHADOWLAB_ variables are checked (experiments/environment.h); --from FILE (or
+// --from=FILE) is replaced by the recorded arguments. Notes held while the inputs were read
+// (core/notes.h) are printed after a successful body and dropped on an error.
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body);
 
 // --shard i/N: 0 <= i < N <= 100000, else InputError("--shard", …).

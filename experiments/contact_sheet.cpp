@@ -34,7 +34,10 @@ ContactSheetLayout contact_sheet_layout(const std::vector<std::string>& row_labe
   while (l.font_scale > 1 && (widest(top_labels, l.font_scale) > l.cell_width + style.separator ||
                               widest(caption_texts, l.font_scale) > l.cell_width))
     l.font_scale /= 2;
-  l.left = style.padding + widest(row_labels, l.font_scale) + style.padding;
+  // The widest row label, then one glyph advance of background, then the grid's frame: a label
+  // never reads as part of the first image.
+  const int frame = std::min(style.separator, style.padding);
+  l.left = style.padding + widest(row_labels, l.font_scale) + kGlyphAdvance * l.font_scale + frame;
   l.top = style.padding + text_height(l.font_scale) + style.padding;
   l.separator = style.separator;
   l.caption = captions ? text_height(l.font_scale) + 2 : 0;

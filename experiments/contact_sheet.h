@@ -29,7 +29,9 @@ struct ContactSheetLayout {
   int font_scale = 1;              // style.font_scale, halved until column labels fit their
                                    // column pitch (cell_width + separator) and captions their
                                    // cell width, or it reaches 1
-  int left = 0;                    // padding + widest row label (at font_scale) + padding
+  int left = 0;                    // padding + widest row label (at font_scale) + one glyph
+                                   // advance (6 × font_scale) + the grid's frame
+                                   // (min(separator, padding))
   int top = 0;                     // padding + text height (at font_scale) + padding
   int separator = 0;
   int caption = 0;                 // px under each cell for its caption: text height + 2 when

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     CommandLine cl = make_command_line("flicker", "[flags]");
     CommonOptions common;
     add_common_options(cl, common);
+    set_default_size(cl, common, 512, 384, "not the scene camera's: every row renders every frame");
     FlickerConfig c;
     std::string techniques = kDefaultTechniques, path = "light-line";
     std::optional<double> step;
@@ -46,10 +47,8 @@ int main(int argc, char** argv) {
     add_int(cl, "--strip", "N", "frame differences in flicker_worst.png (default 6)", strip, 1, 64);
     if (!parse_command_line(cl, argc, argv)) return 0;
     c.path = parse_flicker_path(path, "--path");
-    c.techniques = split_spec_list(techniques);
+    c.techniques = spec_list_items(techniques, "--techniques");
     if (step) c.step = *step;
-    if (!common.width) common.width = 512;
-    if (!common.height) common.height = 384;
     const Scene scene = scene_from_options(common);
     validate_flicker(scene, c);
     // Memory, before any work: the largest map and one run's images (check_run_memory), plus
@@ -109,7 +108,7 @@ int main(int argc, char** argv) {
     write_text_file(common.out + "/flicker.json", j.dump(2) + "\n");
     write_png_grey(common.out + "/flicker_worst.png", flicker_strip(scene, c, r.step, *worst, strip, 2));
     std::printf("worst: %s (excess %.5f, frame %d); wrote %s/flicker.csv, flicker.json, flicker_worst.png "
-                "(its frame differences, top, above the reference's)\n",
+                "(the technique's frame differences above the reference's, each row labelled)\n",
                 worst->spec.c_str(), worst->excess, worst->worst_frame, common.out.c_str());
     return 0;
   });

@@ -1,6 +1,7 @@
 #include "experiments/flicker_run.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 
@@ -276,12 +277,11 @@ ImageF flicker_strip(const Scene& scene, const FlickerConfig& c, double step, co
                      int count, int factor) {
   const int first = std::clamp(row.worst_frame - count / 2, 1, std::max(1, c.frames - count));
   const int last = std::min(c.frames - 1, first + count - 1);
-  const int cells = last - first + 1;
   const double snap = row.snapped ? flicker_snap(scene, row.res) : 0.0;
-  const int sep = 2;
-  const int cw = (scene.camera.width + factor - 1) / factor;
-  const int ch = (scene.camera.height + factor - 1) / factor;
-  ImageF strip(sep + cells * (cw + sep), sep + 2 * (ch + sep), 1, 0.5f);
+  // The frame differences, technique's and reference's, then laid out as a labelled contact
+  // sheet: the row labels say which strip is which.
+  std::vector<ImageF> technique_diffs, reference_diffs;
+  std::vector<std::string> col_labels;
   GBuffer g;
   ImageF m_prev, r_prev;
   for (int f = first - 1; f <= last; ++f) {
@@ -290,19 +290,23 @@ ImageF flicker_strip(const Scene& scene, const FlickerConfig& c, double step, co
     ImageF m = frame_mask(row.snapped ? flicker_frame_scene(scene, c, step, f, snap) : fs, row.spec, g);
     ImageF r = frame_mask(fs, reference_spec(c), g);
     if (f >= first) {
-      const int x0 = sep + (f - first) * (cw + sep);
-      for (int row_i = 0; row_i < 2; ++row_i) {
-        const ImageF cell = box_downscale(row_i == 0 ? abs_difference(m, m_prev) : abs_difference(r, r_prev), factor);
-        const int y0 = sep + row_i * (ch + sep);
-        for (int y = 0; y < ch; ++y)
-          for (int x = 0; x < cw; ++x)
-            strip.data[size_t(y0 + y) * size_t(strip.width) + size_t(x0 + x)] = cell.at(x, y);
-      }
+      technique_diffs.push_back(abs_difference(m, m_prev));
+      reference_diffs.push_back(abs_difference(r, r_prev));
+      col_labels.push_back("FRAME " + std::to_string(f));
     }
     m_prev = std::move(m);
     r_prev = std::move(r);
   }
-  return strip;
+  std::vector<std::vector<const ImageF*>> cells(2);
+  for (size_t k = 0; k < technique_diffs.size(); ++k) {
+    cells[0].push_back(&technique_diffs[k]);
+    cells[1].push_back(&reference_diffs[k]);
+  }
+  std::string label = row.spec + (row.snapped ? " snapped" : "");
+  for (char& ch : label) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+  ContactSheetStyle style;
+  style.max_cell_width = (scene.camera.width + factor - 1) / factor;
+  return contact_sheet({"TECHNIQUE " + label, "REFERENCE"}, col_labels, cells, nullptr, style);
 }
 
 }  // namespace shadowlab

@@ -84,9 +84,10 @@ void validate_flicker(const Scene& scene, const FlickerConfig& c);
 FlickerResult measure_flicker(const Scene& scene, const FlickerConfig& c);
 
 // The picture of a row's worst frames: up to `count` consecutive frame differences around its
-// worst frame, |m_t − m_{t−1}| of the technique in the top row and of the reference below
-// (white = a full lit ↔ shadow change), each box-downscaled by `factor`, 2-pixel grey
-// separators.
+// worst frame, |m_t − m_{t−1}| of the technique in the top row (labelled "TECHNIQUE SPEC") and
+// of the reference below (labelled "REFERENCE"), each column labelled with its frame t (white
+// = a full lit ↔ shadow change), each box-downscaled by `factor`: a contact sheet
+// (experiments/contact_sheet.h).
 ImageF flicker_strip(const Scene& scene, const FlickerConfig& c, double step, const FlickerRow& row,
                      int count, int factor);
 

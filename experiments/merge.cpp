@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "experiments/cli.h"
 #include "core/json_file.h"
+#include "experiments/json_read.h"
 #include "experiments/provenance.h"
 #include "experiments/sweep.h"
 #include "experiments/tune_report.h"
@@ -21,8 +22,7 @@ namespace {
 // shard's command without --shard and --out.
 nlohmann::json merged_provenance(const nlohmann::json& shard0, const std::vector<std::string>& paths) {
   nlohmann::json prov = shard0;
-  const std::vector<std::string> cmd =
-      command_without(shard0.at("command").get<std::vector<std::string>>(), {"--shard", "--out"});
+  const std::vector<std::string> cmd = command_without(json_strings(shard0, "command", paths[0]), {"--shard", "--out"});
   prov["command"] = cmd;
   prov["merged_from"] = paths;
   prov["merged_by"] = provenance_json({}, 0, 0);
@@ -44,10 +44,10 @@ int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::stri
       return 0;
     }
     const TuneResult r = merge_tune_shards(shards, paths);
-    TuneConfig c = tune_config_from_json(shards[0].at("config"), paths[0]);
+    TuneConfig c = tune_config_from_json(json_at(shards[0], "config", paths[0]), paths[0]);
     c.shards = 1;
     c.shard = 0;
-    const nlohmann::json prov = merged_provenance(shards[0].at("provenance"), paths);
+    const nlohmann::json prov = merged_provenance(json_at(shards[0], "provenance", paths[0]), paths);
     std::printf("%s", tune_table(r, c).c_str());
     std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
                 write_tune_outputs(out, r, c, prov).c_str());
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
       return merge(shards, paths, out);
     } catch (const nlohmann::json::exception& e) {
       // A field of the wrong type in a shard file (the readers check what they convert).
-      throw InputError("merge", std::string("malformed shard file: ") + e.what());
+      throw InputError("merge", "malformed shard file: " + json_error_text(e));
     }
   });
 }

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     std::string contours_path;
     bool contours_given = false;
     add_text(cl, "--contours", "OUT.png",
-             "also write the reference's 10 %/90 % contours (black) and the test's (white) over "
+             "also write the reference's 10 %/90 % contours (black) and the test's (yellow) over "
              "red where the test is lighter, blue where darker (metric/contour_image.h)",
              contours_path, &contours_given);
     add_double(cl, "--shadow-ms", "MS", "shadow time T_shadowed - T_unshadowed in ms (adds the performance score)", shadow_ms, 0.0, 1e9);

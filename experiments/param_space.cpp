@@ -23,12 +23,14 @@ std::vector<std::string> split(const std::string& s, char sep) {
   }
 }
 
-// A computed value as text: whole numbers exactly, others to 4 significant digits without an
-// exponent sign the spec parser would refuse ("1e+04").
+// A computed value as text (README "Tuning"): whole numbers below 1e15 exactly, others to 4
+// significant digits; an exponent is written without '+' ("1e18"; specs refuse '+').
 std::string value_text(double v) {
   if (v == std::round(v) && std::fabs(v) < 1e15) return fmt::format("{:.0f}", v);
   std::string t = fmt::format("{:.4g}", v);
-  if (t.find("e+") != std::string::npos) t = fmt::format("{:.1f}", v);
+  if (const size_t e = t.find("e+"); e != std::string::npos) t.erase(e + 1, 1);
+  // fmt pads the exponent to two digits: "1.235e04" is written "1.235e4".
+  if (const size_t e = t.find("e0"); e != std::string::npos && e + 2 < t.size()) t.erase(e + 1, 1);
   return t;
 }
 

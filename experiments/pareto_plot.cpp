@@ -35,10 +35,16 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 
 namespace {
 
-// Page layout, SVG px: a title line, a legend line, then two or three plot areas side by side
-// with room on their left for y tick labels and below for x tick labels and the axis title.
+// Page layout, SVG px: a title line, the legend (as many lines as its entries need), then two
+// or three plot areas side by side with room on their left for y tick labels and below for x
+// tick labels and the axis title.
 constexpr double kPanelStep = 465.0, kHeight = 450.0;
 constexpr double kPlotTop = 78.0, kPlotHeight = 300.0, kPlotWidth = 370.0;
+constexpr double kLegendLine = 20.0;  // px between legend lines
+// Point labels: 9 px text; the box a label is given for the overlap test, px. Wider than a
+// sans-serif font's mean advance (~0.55 em) so that real glyphs stay inside it.
+constexpr double kLabelFont = 9.0, kLabelCharWidth = 0.62 * kLabelFont;
+constexpr double kLabelAscent = 8.0, kLabelDescent = 2.5;
 constexpr double kPlotLeft[3] = {80.0, 80.0 + kPanelStep, 80.0 + 2.0 * kPanelStep};
 constexpr double kMarkerRadius = 4.5;
 constexpr double kRingRadius = 8.0;
@@ -78,6 +84,7 @@ std::string escape_xml(const std::string& text) {
 // Mapping of one panel's data to SVG px: x = log10(cost) over whole decades, y linear.
 struct Panel {
   double left = 0.0;          // plot area's left edge, px
+  double top = kPlotTop;      // plot area's top edge, px (below the legend)
   int decade_lo = 0;          // x axis spans 10^decade_lo .. 10^decade_hi ms
   int decade_hi = 1;
   double y_lo = 0.0, y_hi = 1.0;  // score range shown (padded)
@@ -85,7 +92,7 @@ struct Panel {
     const double t = std::log10(std::max(time_ms, kPlotMinTimeMs));
     return left + (t - decade_lo) / double(decade_hi - decade_lo) * kPlotWidth;
   }
-  double py(double v) const { return kPlotTop + (y_hi - v) / (y_hi - y_lo) * kPlotHeight; }
+  double py(double v) const { return top + (y_hi - v) / (y_hi - y_lo) * kPlotHeight; }
 };
 
 // Whole decades covering the finite times (clamped to the floor); at least one decade, so a
@@ -173,14 +180,14 @@ void marker(std::string& s, const char* cls, int shape, double x, double y, cons
 
 // Frame, grid, ticks and axis titles of one panel.
 void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* x_title) {
-  const double bottom = kPlotTop + kPlotHeight, right = p.left + kPlotWidth;
+  const double bottom = p.top + kPlotHeight, right = p.left + kPlotWidth;
   add(s, "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"#fafafa\" "
-         "stroke=\"#333\" stroke-width=\"1\"/>\n", p.left, kPlotTop, kPlotWidth, kPlotHeight);
+         "stroke=\"#333\" stroke-width=\"1\"/>\n", p.left, p.top, kPlotWidth, kPlotHeight);
   // x: a labelled grid line per decade, short unlabelled ticks at 2..9 × 10^d.
   for (int d = p.decade_lo; d <= p.decade_hi; ++d) {
     const double x = p.px(std::pow(10.0, d));
     add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#ddd\"/>\n", x,
-        kPlotTop, x, bottom);
+        p.top, x, bottom);
     add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\"/>\n", x, bottom,
         x, bottom + 6.0);
     add(s, "<text class=\"xtick\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"11\" text-anchor=\"middle\">{}</text>\n",
@@ -210,9 +217,44 @@ void draw_axes(std::string& s, const Panel& p, const char* y_title, const char* 
   }
   add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\" text-anchor=\"middle\">{}</text>\n",
       p.left + kPlotWidth / 2.0, bottom + 40.0, x_title);
-  const double ty_x = p.left - 52.0, ty_y = kPlotTop + kPlotHeight / 2.0;
+  const double ty_x = p.left - 52.0, ty_y = p.top + kPlotHeight / 2.0;
   add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\" text-anchor=\"middle\" "
          "transform=\"rotate(-90 {:.2f} {:.2f})\">{}</text>\n", ty_x, ty_y, ty_x, ty_y, y_title);
+}
+
+
+// A label's box, px: x from its anchor to the text's estimated end, y from ascent to descent.
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+Box label_box(double x, double y, const std::string& text) {
+  return {x, y - kLabelAscent, x + kLabelCharWidth * double(text.size()), y + kLabelDescent};
+}
+
+// Where a front point's label goes: the first of eight spots beside its ring (right, then
+// left; above, below, then further out) whose box stays in the plot area and overlaps no box in
+// `placed` (the front's rings, the labels placed before); false when none does (the legend and
+// the CSV still name the point).
+bool place_label(const Panel& p, double px, double py, const std::string& text,
+                 std::vector<Box>& placed, double& x, double& y) {
+  const double w = kLabelCharWidth * double(text.size());
+  const double dxs[2] = {kRingRadius + 1.0, -kRingRadius - 1.0 - w};
+  const double dys[4] = {-6.0, 13.0, -18.0, 25.0};
+  for (double dy : dys)
+    for (double dx : dxs) {
+      const Box b = label_box(px + dx, py + dy, text);
+      if (b.x0 < p.left || b.x1 > p.left + kPlotWidth || b.y0 < p.top || b.y1 > p.top + kPlotHeight)
+        continue;
+      if (std::any_of(placed.begin(), placed.end(), [&](const Box& o) { return o.overlaps(b); }))
+        continue;
+      placed.push_back(b);
+      x = px + dx;
+      y = py + dy;
+      return true;
+    }
+  return false;
 }
 
 }  // namespace
@@ -240,38 +282,61 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
   const int panels = any_bytes ? 3 : 2;
   const double width = 80.0 + double(panels) * kPanelStep - 50.0;  // 960 px for two panels
 
+  // Legend: one entry per series, then the front's line and ring (and the budget square),
+  // wrapped onto further lines where the page's width ends; the panels move down by them.
+  const bool any_chosen = std::any_of(points.begin(), points.end(), [](const PlotPoint& p) { return p.chosen; });
+  std::vector<double> entry_width;
+  for (const std::string& name : series) entry_width.push_back(34.0 + 7.0 * double(name.size()));
+  entry_width.push_back(112.0);             // Pareto front
+  if (any_chosen) entry_width.push_back(130.0);  // best for a budget
+  std::vector<double> entry_x(entry_width.size()), entry_y(entry_width.size());
+  {
+    double x = kPlotLeft[0], y = 52.0;
+    for (size_t k = 0; k < entry_width.size(); ++k) {
+      if (x > kPlotLeft[0] && x + entry_width[k] > width - 20.0) {
+        x = kPlotLeft[0];
+        y += kLegendLine;
+      }
+      entry_x[k] = x;
+      entry_y[k] = y;
+      x += entry_width[k];
+    }
+  }
+  const double shift = entry_y.back() - 52.0;  // extra legend lines
+  const double height = kHeight + shift;
+
   std::string s;
   add(s, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0f}\" height=\"{:.0f}\" "
-         "viewBox=\"0 0 {:.0f} {:.0f}\" font-family=\"sans-serif\">\n", width, kHeight, width, kHeight);
-  add(s, "<rect width=\"{:.0f}\" height=\"{:.0f}\" fill=\"#fff\"/>\n", width, kHeight);
+         "viewBox=\"0 0 {:.0f} {:.0f}\" font-family=\"sans-serif\">\n", width, height, width, height);
+  add(s, "<rect width=\"{:.0f}\" height=\"{:.0f}\" fill=\"#fff\"/>\n", width, height);
   add(s, "<text x=\"{:.2f}\" y=\"26\" font-size=\"16\" text-anchor=\"middle\">{}</text>\n",
       width / 2.0, escape_xml(title).c_str());
 
-  // Legend: one entry per series, then the front's line and ring.
-  double lx = kPlotLeft[0];
-  const double ly = 52.0;
   for (size_t k = 0; k < series.size(); ++k) {
+    const double lx = entry_x[k], ly = entry_y[k];
     marker(s, "legend", shape_of(int(k)), lx, ly, kPalette[k % kPaletteSize]);
-    add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">{}</text>\n", lx + 10.0, ly + 4.0,
-        escape_xml(series[k]).c_str());
-    lx += 34.0 + 7.0 * double(series[k].size());
+    add(s, "<text class=\"legendtext\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">{}</text>\n", lx + 10.0,
+        ly + 4.0, escape_xml(series[k]).c_str());
   }
+  double lx = entry_x[series.size()] + 6.0;
+  double ly = entry_y[series.size()];
   add(s, "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"#333\" "
          "stroke-width=\"1.2\" stroke-dasharray=\"4 3\"/>\n", lx - 6.0, ly, lx + 18.0, ly);
   add(s, "<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" stroke=\"#333\"/>\n", lx + 6.0,
       ly, kRingRadius);
-  add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
-  const bool any_chosen = std::any_of(points.begin(), points.end(), [](const PlotPoint& p) { return p.chosen; });
+  add(s, "<text class=\"legendtext\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">Pareto front</text>\n", lx + 24.0, ly + 4.0);
   if (any_chosen) {
-    lx += 112.0;
+    lx = entry_x.back();
+    ly = entry_y.back();
     add(s, "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"none\" "
            "stroke=\"#d00\" stroke-width=\"1.5\"/>\n", lx, ly - kRingRadius, 2.0 * kRingRadius, 2.0 * kRingRadius);
-    add(s, "<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">best for a budget</text>\n", lx + 18.0, ly + 4.0);
+    add(s, "<text class=\"legendtext\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"12\">best for a budget</text>\n", lx + 18.0, ly + 4.0);
   }
 
   for (int panel = 0; panel < panels; ++panel) {
     Panel p;
     p.left = kPlotLeft[panel];
+    p.top = kPlotTop + shift;
     p.decade_lo = panel == 2 ? mb_lo : decade_lo;
     p.decade_hi = panel == 2 ? mb_hi : decade_hi;
     // A point is in this panel only with a finite cost and y; the rest get NaN (never on the front).
@@ -321,10 +386,19 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
         add(s, "<rect class=\"chosen\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" "
                "fill=\"none\" stroke=\"#d00\" stroke-width=\"1.5\"/>\n", p.px(cost[i]) - kRingRadius,
             p.py(score[i]) - kRingRadius, 2.0 * kRingRadius, 2.0 * kRingRadius);
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (std::isnan(cost[i])) continue;
-      add(s, "<text class=\"lbl\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"9\" fill=\"#222\">{}</text>\n",
-          p.px(cost[i]) + 7.0, p.py(score[i]) - 6.0, escape_xml(points[i].label).c_str());
+    // Labels for the front's points only (the rest are told apart by the legend): at 18
+    // techniques x 4 resolutions a label per point would pile into an unreadable block. Each
+    // goes where it overlaps no other; one that fits nowhere is left out.
+    // The front's rings are in the way too: a label over a ring hides which point it marks.
+    std::vector<Box> placed;
+    for (size_t i : order)
+      placed.push_back({p.px(cost[i]) - kRingRadius, p.py(score[i]) - kRingRadius,
+                        p.px(cost[i]) + kRingRadius, p.py(score[i]) + kRingRadius});
+    for (size_t i : order) {
+      double x = 0.0, y = 0.0;
+      if (place_label(p, p.px(cost[i]), p.py(score[i]), points[i].label, placed, x, y))
+        add(s, "<text class=\"lbl\" x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"9\" fill=\"#222\">{}</text>\n",
+            x, y, escape_xml(points[i].label).c_str());
     }
   }
   s += "</svg>\n";

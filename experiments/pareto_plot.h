@@ -31,7 +31,9 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 // The SVG text: left panel y = total, middle panel y = fidelity, x = time_ms (log, decade
 // ticks); a third panel y = total, x = bytes in MB (log), when any point has bytes > 0.
 // Each panel's front (cost = time, score = that panel's y, over all points) is drawn as a
-// staircase through its points in time order, and its points are ringed. Deterministic: every
+// staircase through its points in time order, and its points are ringed and labelled (each
+// label where it overlaps no other, else left out); the other points are told apart by the
+// legend (a colour and shape per series, wrapped onto as many lines as needed). Deterministic: every
 // number has fixed precision. Points with a non-finite time or y are left out of that panel.
 // score_name titles the total panels (the tuner plots its objective there).
 std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& title,

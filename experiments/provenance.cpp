@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/notes.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
 #include "core/json_file.h"
@@ -148,8 +149,8 @@ std::vector<std::string> arguments_from_run(const std::string& program, const st
       if (sc.is_object() && sc.contains("name") && sc.contains("hash") && sc["name"].is_string() && sc["hash"].is_string())
         recorded_hashes()[sc["name"].get<std::string>()] = sc["hash"].get<std::string>();
   if (p.contains("commit") && p["commit"].is_string() && p["commit"].get<std::string>() != build_commit())
-    std::fprintf(stderr, "%s: note: %s was recorded with commit %s, this build is %s: scores may differ\n",
-                 program.c_str(), path.c_str(), p["commit"].get<std::string>().c_str(), build_commit());
+    hold_note(program + ": note: " + path + " was recorded with commit " + p["commit"].get<std::string>() +
+              ", this build is " + build_commit() + ": scores may differ");
   return args;
 }
 

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     std::optional<int> spp, repeats_given;
     bool quick = false, no_cache = false, plot_given = false;
     std::string plot;
-    add_text(cl, "--techniques", "LIST", "comma-separated technique specs without res (default: csm)", techniques);
+    add_text(cl, "--techniques", "LIST", "comma-separated light-map technique specs without res (the ray tracer is the reference: --spp) (default: csm)", techniques);
     add_int_list(cl, "--resolutions", "LIST", "shadow-map resolutions (default: 128,256,512,1024)", c.resolutions, 1, 8192);
     add_int(cl, "--spp", "N", "reference samples per pixel (default 256; 1024 = the paper)", spp, 1, 1 << 20);
     add_int(cl, "--repeats", "N", "timed runs, the median reported (default 5; 3 with --quick)", repeats_given, 1, 100000);
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
       if (!common.width) common.width = 320;
       if (!common.height) common.height = 240;
     }
-    c.techniques = split_spec_list(techniques);
+    c.techniques = spec_list_items(techniques, "--techniques");
     c.spp = spp.value_or(quick ? 64 : 256);
     c.repeats = repeats_given.value_or(quick ? 3 : 5);
     c.cache_dir = no_cache ? "" : default_cache_dir();

@@ -54,6 +54,10 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   std::vector<TechniqueSpec> specs;
   for (const std::string& t : config.techniques) {
     TechniqueSpec s = parse_technique_spec(t, "--techniques");
+    // The sweep's rows are light maps at each resolution; the ray tracer is its reference.
+    if (s.name == "rt")
+      throw InputError("--techniques", "rt has no map resolution: the sweep runs light-map techniques at each of "
+                                       "--resolutions against its ray-traced reference (--spp)");
     if (s.params.count("res")) throw InputError("--techniques", "'" + t + "': res is swept by --resolutions");
     for (const TechniqueSpec& other : specs)
       if (other.text == s.text)
@@ -317,6 +321,8 @@ std::vector<PlotPoint> sweep_plot_points(const SweepResult& r) {
   return points;
 }
 
+std::string sweep_caption(const SweepRow& row) { return fmt::format("total {:.3f}", row.report.total); }
+
 ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
   const size_t n_res = config.resolutions.size();
   // run_resolution_sweep appends rows technique-major, resolution-minor.
@@ -335,7 +341,7 @@ ImageF sweep_contact_sheet(const SweepResult& r, const SweepConfig& config) {
     for (size_t j = 0; j < n_res; ++j) {
       const SweepRow& row = r.rows[t * n_res + j];
       cells.back().push_back(cell(row));
-      captions.back().push_back(fmt::format("{:.3f}", row.report.total));
+      captions.back().push_back(sweep_caption(row));
     }
   }
   for (int res : config.resolutions) col_labels.push_back(std::to_string(res));
@@ -346,10 +352,10 @@ namespace {
 
 SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
   SweepRow row;
-  row.label = j.at("label").get<std::string>();
+  row.label = json_string(j, "label", where);
   row.index = json_uint(j, "index", uint64_t(1) << 40, where);
-  row.technique = j.at("technique").get<std::string>();
-  row.spec = j.at("spec").get<std::string>();
+  row.technique = json_string(j, "technique", where);
+  row.spec = json_string(j, "spec", where);
   row.res = int(json_uint(j, "res", 1 << 20, where));
   MetricReport& m = row.report;
   for (const auto& [k, v] : std::initializer_list<std::pair<const char*, double MetricReport::*>>{
@@ -359,21 +365,21 @@ SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
            {"fidelity", &MetricReport::fidelity}, {"aesthetics", &MetricReport::aesthetics},
            {"ssim", &MetricReport::ssim}, {"rmse", &MetricReport::rmse}, {"psnr", &MetricReport::psnr},
            {"total", &MetricReport::total}})
-    m.*v = j.at(k).get<double>();
+    m.*v = json_number(j, k, where);
   // FLIP since 2026-12-01: files written before have neither key (NaN then: "not measured").
-  m.flip_mean = j.contains("flip_mean") ? j.at("flip_mean").get<double>() : std::nan("");
-  row.flip_shaded = j.contains("flip_shaded") ? j.at("flip_shaded").get<double>() : std::nan("");
+  m.flip_mean = j.contains("flip_mean") ? json_number(j, "flip_mean", where) : std::nan("");
+  row.flip_shaded = j.contains("flip_shaded") ? json_number(j, "flip_shaded", where) : std::nan("");
   m.has_performance = j.contains("performance");
-  if (m.has_performance) m.performance = j.at("performance").get<double>();
+  if (m.has_performance) m.performance = json_number(j, "performance", where);
   ShadowResult& r = row.result;
-  r.from_cache = j.at("from_cache").get<bool>();
-  auto ms = [&](const char* k) { return j.at(k).is_null() ? 0.0 : j.at(k).get<double>(); };
+  r.from_cache = json_bool(j, "from_cache", where);
+  auto ms = [&](const char* k) { return json_at(j, k, where).is_null() ? 0.0 : json_number(j, k, where); };
   r.faces_ms = ms("faces_ms");
   r.render_ms = ms("render_ms");
   r.filter_ms = ms("filter_ms");
   r.map_ms = ms("map_ms");
   r.lookup_ms = ms("lookup_ms");
-  const nlohmann::json& w = j.at("work");
+  const nlohmann::json& w = json_at(j, "work", where);
   r.work.triangles_submitted = json_uint(w, "triangles_submitted", UINT64_MAX, where);
   r.work.triangles_binned = json_uint(w, "triangles_binned", UINT64_MAX, where);
   r.work.texels_rendered = json_uint(w, "texels_rendered", UINT64_MAX, where);
@@ -384,7 +390,7 @@ SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
   r.work.bytes_read = json_uint(w, "bytes_read", UINT64_MAX, where);
   r.faces_needed = int(json_uint(j, "faces_needed", 64, where));
   r.faces_rendered = int(json_uint(j, "faces_rendered", 64, where));
-  r.notes = j.at("notes").get<std::string>();
+  r.notes = json_string(j, "notes", where);
   return row;
 }
 
@@ -394,21 +400,21 @@ SweepResult sweep_from_json(const nlohmann::json& j, const std::string& where) {
   try {
     if (!j.contains("kind") || j.at("kind") != "sweep") throw InputError(where, "not a resolution_sweep result");
     SweepResult r;
-    r.scene = j.at("scene").get<std::string>();
+    r.scene = json_string(j, "scene", where);
     r.width = int(json_uint(j, "width", 1 << 20, where));
     r.height = int(json_uint(j, "height", 1 << 20, where));
-    r.camera_ms = j.at("camera_ms").get<double>();
-    r.provenance = j.at("provenance");
+    r.camera_ms = json_number(j, "camera_ms", where);
+    r.provenance = json_at(j, "provenance", where);
     r.rows_total = json_uint(j, "rows_total", uint64_t(1) << 40, where);
     r.shards = int(std::max<uint64_t>(1, json_uint(j, "shards", 100000, where)));
     r.shard = int(json_uint(j, "shard", uint64_t(r.shards - 1), where));
     if (!r.provenance.is_object() || !r.provenance.contains("command") || !r.provenance["command"].is_array())
       throw InputError(where, "its provenance has no command");
-    r.reference = row_from_json(j.at("reference"), where);
-    for (const nlohmann::json& row : j.at("rows")) r.rows.push_back(row_from_json(row, where));
+    r.reference = row_from_json(json_at(j, "reference", where), where);
+    for (const nlohmann::json& row : json_array(j, "rows", where)) r.rows.push_back(row_from_json(row, where));
     return r;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(where, std::string("malformed resolution_sweep result: ") + e.what());
+    throw InputError(where, "malformed resolution_sweep result: " + json_error_text(e));
   }
 }
 
@@ -420,23 +426,20 @@ SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
     throw InputError(paths[0], fmt::format("is one of {} shards, {} files given", merged.shards, shards.size()));
   // What determines the scores must agree: the run's command but --shard and --out, the build,
   // the scenes. Machine, date and threads may differ.
-  auto key = [](const nlohmann::json& p) {
+  auto key = [](const nlohmann::json& p, const std::string& where) {
     nlohmann::json k = p;
     for (const char* f : {"date", "cpu", "threads"}) k.erase(f);
     const std::vector<std::string> cmd =
-        command_without(p.at("command").get<std::vector<std::string>>(), {"--shard", "--out", "--threads"});
+        command_without(json_strings(p, "command", where), {"--shard", "--out", "--threads"});
     k["command"] = cmd;
     return k;
   };
-  const nlohmann::json key0 = key(merged.provenance);
+  const nlohmann::json key0 = key(merged.provenance, paths[0]);
   std::set<int> seen;
   for (size_t i = 0; i < shards.size(); ++i) {
     SweepResult r = sweep_from_json(shards[i], paths[i]);
-    const nlohmann::json k = key(r.provenance);
-    for (auto it = key0.begin(); it != key0.end(); ++it)
-      if (!k.contains(it.key()) || k.at(it.key()) != it.value())
-        throw InputError(paths[i], "provenance '" + it.key() + "' differs from " + paths[0] + "'s");
-    if (k != key0) throw InputError(paths[i], "provenance has fields " + paths[0] + "'s has not");
+    const nlohmann::json k = key(r.provenance, paths[i]);
+    if (k != key0) throw InputError(paths[i], provenance_difference(k, key0, paths[0]));
     if (r.shards != merged.shards || r.rows_total != merged.rows_total || r.scene != merged.scene)
       throw InputError(paths[i], "is a shard of another sweep than " + paths[0]);
     if (!seen.insert(r.shard).second) throw InputError(paths[i], fmt::format("shard {} given twice", r.shard));

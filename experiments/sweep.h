@@ -81,7 +81,10 @@ SweepResult merge_sweep_shards(const std::vector<nlohmann::json>& shards,
 std::vector<PlotPoint> sweep_plot_points(const SweepResult& result);
 // The contact sheet: one row per config.techniques entry, one column per config.resolutions
 // entry (both in config order), the reference as the first column; cells are the masks, or the
-// shaded images with config.shaded_sheet, each with its total score under it.
+// shaded images with config.shaded_sheet, each with its total score under it, labelled
+// (sweep_caption).
 ImageF sweep_contact_sheet(const SweepResult& result, const SweepConfig& config);
+// The caption under a row's cell: "total 0.834" (the score named, 3 decimals).
+std::string sweep_caption(const SweepRow& row);
 
 }  // namespace shadowlab

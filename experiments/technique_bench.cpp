@@ -36,23 +36,26 @@ int main(int argc, char** argv) {
     mark_unused(cl, {"--out", "--max-memory"}, "a benchmark writes no files and keeps one scene's buffers");
     std::string techniques = kDefaultSpecs;
     int res = 1024, repeats = 9;
-    add_text(cl, "--techniques", "LIST", std::string("specs without res (default ") + kDefaultSpecs + ")", techniques);
+    add_text(cl, "--techniques", "LIST", std::string("light-map technique specs without res (default ") + kDefaultSpecs + ")", techniques);
     add_int(cl, "--res", "N", "map resolution of every spec (default 1024)", res, 1, 8192);
     add_repeats(cl, repeats, 3, "interleaved: each round runs every technique once");
     if (!parse_command_line(cl, argc, argv)) return 0;
+    // The scene first: each spec is checked against it (a projector technique needs --slide)
+    // before any work, and its errors name --techniques.
+    const Scene scene = scene_from_options(common);
     std::vector<TechniqueSpec> specs;
-    for (const std::string& t : split_spec_list(techniques)) {
+    for (const std::string& t : spec_list_items(techniques, "--techniques")) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
-      if (s.name == "rt") throw InputError("--techniques", "rt is not a light-map technique");
+      if (s.name == "rt")
+        throw InputError("--techniques", "rt has no map resolution: technique_bench times light-map techniques at --res");
       // The targets compare every spec at one resolution: a spec's own res would be overridden.
       if (s.params.count("res"))
         throw InputError("--techniques", "'" + t + "': give the resolution with --res");
       s.params["res"] = std::to_string(res);
       s.text = spec_text(s);
-      validate_technique(s, "--techniques");
+      validate_technique_for_scene(s, scene, "--techniques");
       specs.push_back(s);
     }
-    const Scene scene = scene_from_options(common);
     GBuffer g;
     render_gbuffer(scene, g);
     std::printf("scene %s: %zu triangles, %dx%d, %d threads, res %d, %d interleaved repeats\n",
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
     RunOptions opt;
     opt.want_texels = false;
     opt.repeats = 3;
+    opt.flag = "--techniques";
     for (const TechniqueSpec& s : specs) run_technique(s, scene, g, opt);  // warm-up
     for (int rep = 0; rep < repeats; ++rep)
       for (const TechniqueSpec& s : specs) {

@@ -70,24 +70,24 @@ TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   e.index = json_uint(j, "index", kMaxIndex, where);
   e.point = json_uint(j, "point", kMaxIndex, where);
   e.rung = int(json_uint(j, "rung", 1, where));
-  e.scene = j.at("scene").get<std::string>();
-  e.technique = j.at("technique").get<std::string>();
-  e.spec = j.at("spec").get<std::string>();
+  e.scene = json_string(j, "scene", where);
+  e.technique = json_string(j, "technique", where);
+  e.spec = json_string(j, "spec", where);
   e.width = int(json_uint(j, "width", 1 << 20, where));
   e.height = int(json_uint(j, "height", 1 << 20, where));
   e.spp = int(json_uint(j, "spp", 1 << 30, where));
-  e.objective = j.at("objective").get<double>();
+  e.objective = json_number(j, "objective", where);
   // flip_mean since 2026-12-01: a file written before has none (NaN: not measured).
   for (const auto& [k, m] : report_fields())
     e.report.*m = std::string(k) == "flip_mean" && !j.contains(k) ? std::nan("")
-                                                                  : j.at(k).get<double>();
-  e.report.has_performance = j.at("has_performance").get<bool>();
-  e.faces_ms = j.at("faces_ms").get<double>();
-  e.render_ms = j.at("render_ms").get<double>();
-  e.filter_ms = j.at("filter_ms").get<double>();
-  e.map_ms = j.at("map_ms").get<double>();
-  e.lookup_ms = j.at("lookup_ms").get<double>();
-  for (const auto& [k, m] : work_fields()) e.work.*m = json_uint(j.at("work"), k, UINT64_MAX, where);
+                                                                  : json_number(j, k, where);
+  e.report.has_performance = json_bool(j, "has_performance", where);
+  e.faces_ms = json_number(j, "faces_ms", where);
+  e.render_ms = json_number(j, "render_ms", where);
+  e.filter_ms = json_number(j, "filter_ms", where);
+  e.map_ms = json_number(j, "map_ms", where);
+  e.lookup_ms = json_number(j, "lookup_ms", where);
+  for (const auto& [k, m] : work_fields()) e.work.*m = json_uint(json_at(j, "work", where), k, UINT64_MAX, where);
   return e;
 }
 
@@ -268,18 +268,20 @@ nlohmann::json tune_json(const TuneResult& r, const TuneConfig& c, const nlohman
 
 TuneResult tune_from_json(const nlohmann::json& j, const std::string& where) {
   try {
-    if (j.at("kind").get<std::string>() != "tune") throw InputError(where, "not a tune result (kind is not \"tune\")");
+    if (json_string(j, "kind", where) != "tune") throw InputError(where, "not a tune result (kind is not \"tune\")");
     TuneResult r;
-    r.scenes = j.at("scenes").get<std::vector<std::string>>();
-    r.points = j.at("points").get<std::vector<std::string>>();
-    r.strategy = j.at("strategy").get<std::string>();
-    const nlohmann::json totals = {{"rung0", j.at("rung_total").at(0)}, {"rung1", j.at("rung_total").at(1)}};
+    r.scenes = json_strings(j, "scenes", where);
+    r.points = json_strings(j, "points", where);
+    r.strategy = json_string(j, "strategy", where);
+    const nlohmann::json& rungs = json_array(j, "rung_total", where);
+    if (rungs.size() != 2) throw InputError(where, "'rung_total' is not a list of 2 counts");
+    const nlohmann::json totals = {{"rung0", rungs[0]}, {"rung1", rungs[1]}};
     r.rung_total[0] = json_uint(totals, "rung0", kMaxIndex, where);
     r.rung_total[1] = json_uint(totals, "rung1", kMaxIndex, where);
-    for (const nlohmann::json& e : j.at("evaluations")) r.evals.push_back(eval_from_json(e, where));
+    for (const nlohmann::json& e : json_array(j, "evaluations", where)) r.evals.push_back(eval_from_json(e, where));
     return r;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(where, std::string("malformed tune result: ") + e.what());
+    throw InputError(where, "malformed tune result: " + json_error_text(e));
   }
 }
 
@@ -314,7 +316,7 @@ TuneResult merge_tune_shards(const std::vector<nlohmann::json>& shards,
   if (shards.empty()) throw InputError("merge", "no shard files given");
   TuneResult merged = tune_from_json(shards[0], paths[0]);
   merged.evals.clear();
-  const nlohmann::json& config0 = shards[0].at("config");
+  const nlohmann::json& config0 = json_at(shards[0], "config", paths[0]);
   const int n = int(json_uint(config0, "shards", 100000, paths[0]));
   if (int(shards.size()) != n)
     throw InputError(paths[0], fmt::format("is one of {} shards, {} files given", n, shards.size()));
@@ -324,22 +326,16 @@ TuneResult merge_tune_shards(const std::vector<nlohmann::json>& shards,
     for (const char* f : {"date", "cpu", "hostname", "command", "threads"}) k.erase(f);
     return k;
   };
-  const nlohmann::json prov0 = must_agree(shards[0].at("provenance"));
+  const nlohmann::json prov0 = must_agree(json_at(shards[0], "provenance", paths[0]));
   std::set<int> shard_ids;
   std::vector<int> seen_count;
   for (size_t i = 0; i < shards.size(); ++i) {
     const nlohmann::json& j = shards[i];
     TuneResult r = tune_from_json(j, paths[i]);
-    if (j.at("config") != config0)
+    if (json_at(j, "config", paths[i]) != config0)
       throw InputError(paths[i], "was run with a different configuration than " + paths[0]);
-    const nlohmann::json prov = must_agree(j.at("provenance"));
-    if (prov != prov0)
-      for (auto it = prov0.begin(); it != prov0.end(); ++it)
-        if (!prov.contains(it.key()) || prov.at(it.key()) != it.value())
-          throw InputError(paths[i], "provenance '" + it.key() + "' differs from " + paths[0] + "'s (" +
-                                         (prov.contains(it.key()) ? prov.at(it.key()).dump() : "missing") +
-                                         " vs " + it.value().dump() + ")");
-    if (prov != prov0) throw InputError(paths[i], "provenance differs from " + paths[0] + "'s");
+    const nlohmann::json prov = must_agree(json_at(j, "provenance", paths[i]));
+    if (prov != prov0) throw InputError(paths[i], provenance_difference(prov, prov0, paths[0]));
     if (r.scenes != merged.scenes || r.points != merged.points || r.strategy != merged.strategy ||
         r.rung_total[0] != merged.rung_total[0] || r.rung_total[1] != merged.rung_total[1])
       throw InputError(paths[i], "lists other scenes, points or evaluation counts than " + paths[0]);
@@ -370,17 +366,20 @@ namespace shadowlab {
 TuneConfig tune_config_from_json(const nlohmann::json& j, const std::string& where) {
   try {
     TuneConfig c;
-    for (const nlohmann::json& s : j.at("spaces")) c.spaces.push_back(parse_param_space(s.get<std::string>(), where));
-    c.budgets_ms = j.at("budgets_ms").get<std::vector<double>>();
-    c.budgets_bytes = j.at("budgets_bytes").get<std::vector<double>>();
-    c.objective = j.at("objective").get<std::string>();
-    const nlohmann::json& w = j.at("weights");
-    c.weights.fidelity = w.at("fidelity").get<double>();
-    c.weights.aesthetics = w.at("aesthetics").get<double>();
-    c.weights.detail = w.at("detail").get<double>();
-    c.weights.performance = w.at("performance").get<double>();
-    c.weights.target_fps = w.at("target_fps").get<double>();
-    c.strategy = j.at("strategy").get<std::string>();
+    for (const std::string& s : json_strings(j, "spaces", where)) c.spaces.push_back(parse_param_space(s, where));
+    for (const char* key : {"budgets_ms", "budgets_bytes"})
+      for (const nlohmann::json& b : json_array(j, key, where)) {
+        if (!b.is_number()) throw InputError(where, std::string("'") + key + "' is not a list of numbers");
+        (std::string(key) == "budgets_ms" ? c.budgets_ms : c.budgets_bytes).push_back(b.get<double>());
+      }
+    c.objective = json_string(j, "objective", where);
+    const nlohmann::json& w = json_at(j, "weights", where);
+    c.weights.fidelity = json_number(w, "fidelity", where);
+    c.weights.aesthetics = json_number(w, "aesthetics", where);
+    c.weights.detail = json_number(w, "detail", where);
+    c.weights.performance = json_number(w, "performance", where);
+    c.weights.target_fps = json_number(w, "target_fps", where);
+    c.strategy = json_string(j, "strategy", where);
     c.max_evals = json_uint(j, "max_evals", 100000000, where);
     c.spp = int(json_uint(j, "spp", 1 << 20, where));
     c.repeats = int(json_uint(j, "repeats", 100000, where));
@@ -390,7 +389,7 @@ TuneConfig tune_config_from_json(const nlohmann::json& j, const std::string& whe
     c.shards = int(std::max<uint64_t>(1, json_uint(j, "shards", 100000, where)));
     return c;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(where, std::string("malformed tune config: ") + e.what());
+    throw InputError(where, "malformed tune config: " + json_error_text(e));
   }
 }
 

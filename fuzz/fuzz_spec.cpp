@@ -9,6 +9,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
+    shadowlab::spec_list_items(text, "--techniques");  // the flags' lists: empty items named
+  } catch (const shadowlab::InputError&) {
+  }
+  try {
     for (const std::string& item : shadowlab::split_spec_list(text)) {
       const shadowlab::Spec s = shadowlab::parse_spec(item, "--technique");
       shadowlab::SpecReader r(s, "--technique");

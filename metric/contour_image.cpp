@@ -35,7 +35,8 @@ ImageF contour_comparison(const ImageF& test, const ImageF& ref) {
       rgb[2] = 1.0f;
       rgb[0] = rgb[1] = 0.5f * grey;
     }
-    if (test_c.data[i]) rgb[0] = rgb[1] = rgb[2] = 1.0f;
+    if (test_c.data[i])
+      for (int c = 0; c < 3; ++c) rgb[c] = kTestContourRgb[c];
     if (ref_c.data[i]) rgb[0] = rgb[1] = rgb[2] = 0.0f;  // the reference's lines on top
     for (int c = 0; c < 3; ++c) out.data[size_t(c) * ref.pixel_count() + i] = rgb[c];
   }

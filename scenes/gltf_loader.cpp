@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/json_check.h"
+#include "core/notes.h"
 #include "core/parse_number.h"
 #include "scenes/scene_library.h"
 #include "core/slide.h"
@@ -101,7 +102,7 @@ class Loader {
   [[noreturn]] void fail(const std::string& reason) const { throw InputError(path_, reason); }
   void note(const std::string& text) {
     if (notes_) notes_->push_back(text);
-    else std::cerr << "warning: " << path_ << ": " << text << "\n";
+    else hold_note("warning: " + path_ + ": " + text);
   }
 
   void read_model() {
@@ -530,6 +531,9 @@ class Loader {
         if (!(rv >= 0.0 && rv < 1e6)) fail(name + ": extras.radius " + std::to_string(rv) + " is outside [0, 1e6) m");
         s.light.radius = float(rv);
       }
+      // KHR_lights_punctual: range > 0, or absent (tinygltf's 0) for no limit.
+      if (l.range < 0.0 || std::isnan(l.range))
+        fail(name + ": range " + fmt::format("{}", l.range) + " is not positive (give range > 0, or none for no limit)");
       if (l.range > 0.0) {
         if (!(l.range < 1e9)) fail(name + ": range is too large");
         s.light.far = float(l.range);
@@ -628,7 +632,7 @@ Scene make_gltf_scene(const std::string& path, const GltfChoice& choice,
   Scene s = loader.load(choice, &c);
   auto say = [&](const std::string& text) {
     if (notes) notes->push_back(text);
-    else std::cerr << "note: " << path << ": " << text << "\n";
+    else hold_note("note: " + path + ": " + text);
   };
   const vec3 light_pos = s.light.position;
   const float radius = s.light.radius;

@@ -19,6 +19,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/notes.h"
 #include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
@@ -109,7 +110,7 @@ struct Notes {
     if (out)
       out->push_back(note);
     else
-      std::cerr << "warning: " << path << ": " << note << "\n";
+      hold_note("warning: " + path + ": " + note);
   }
 };
 

@@ -137,7 +137,7 @@ bool is_ignored_statement(std::string_view k) {
 // Checks one face corner "v", "v/vt", "v//vn" or "v/vt/vn". Indices are 1-based or negative
 // (relative to the count so far); positive ones are range-checked at the end of the file.
 void check_corner(const std::string& path, size_t line, std::string_view c, const ObjTextSummary& s,
-                  std::array<long long, 3>& max_index) {
+                  std::array<long long, 3>& max_index, std::array<size_t, 3>& max_line) {
   std::array<std::string_view, 3> part{};
   size_t n = 0, b = 0;
   for (size_t i = 0; i <= c.size(); ++i)
@@ -165,7 +165,10 @@ void check_corner(const std::string& path, size_t line, std::string_view c, cons
       fail(path, line,
            std::string("face refers to ") + what[k] + " " + std::to_string(idx) + " but only " +
                std::to_string(counts[k]) + " precede it");
-    if (idx > max_index[k]) max_index[k] = idx;
+    if (idx > max_index[k]) {
+      max_index[k] = idx;
+      max_line[k] = line;  // the first face that uses the largest index
+    }
   }
 }
 
@@ -175,6 +178,7 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
   ObjTextSummary s;
   Tokens t;
   std::array<long long, 3> max_index{0, 0, 0};  // largest positive v, vt, vn index used
+  std::array<size_t, 3> max_line{0, 0, 0};      // the line of its first use
   size_t ignored = 0, line_no = 0;
   std::string first_ignored;
   size_t pos = 0;
@@ -214,7 +218,7 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
     } else if (key == "f") {
       if (args < 3)
         fail(path, line_no, "face with " + std::to_string(args) + " corners (needs 3+)");
-      for (size_t i = 1; i < t.count(); ++i) check_corner(path, line_no, t.tok[i], s, max_index);
+      for (size_t i = 1; i < t.count(); ++i) check_corner(path, line_no, t.tok[i], s, max_index, max_line);
       ++s.faces;
       s.triangles += args - 2;
     } else if (key == "g" || key == "o" || key == "s") {
@@ -232,9 +236,9 @@ ObjTextSummary check_obj_text(const std::string& path, std::string_view text) {
   const char* what[3] = {"vertex", "texcoord", "normal"};
   for (int k = 0; k < 3; ++k)
     if (max_index[size_t(k)] > (long long)counts[k])
-      throw InputError(path, std::string("a face refers to ") + what[k] + " " +
-                                 std::to_string(max_index[size_t(k)]) + " but the file has " +
-                                 std::to_string(counts[k]));
+      fail(path, max_line[size_t(k)],
+           std::string("face refers to ") + what[k] + " " + std::to_string(max_index[size_t(k)]) +
+               " but the file has " + std::to_string(counts[k]));
   if (ignored > 0)
     s.notes.push_back(std::to_string(ignored) +
                       " statement(s) without triangles ignored (first: '" + first_ignored + "')");

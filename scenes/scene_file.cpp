@@ -12,6 +12,7 @@
 #include "core/text.h"
 #include "core/error.h"
 #include "core/json_file.h"
+#include "core/notes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -121,7 +122,7 @@ bool is_scene_file_path(const std::string& path) {
 Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) {
   auto note = [&](const std::string& text) {
     if (notes) notes->push_back(text);
-    else std::cerr << "note: " << path << ": " << text << "\n";
+    else hold_note("note: " + path + ": " + text);
   };
   const json doc = read_json_file(path, kSceneFileLimit);
   const Reader top(path, doc, "");

@@ -129,4 +129,23 @@ std::string technique_list_text() {
   return s;
 }
 
+std::vector<char> technique_layout_letters() {
+  std::vector<char> out;
+  for (const LayoutName& l : kLayouts) out.push_back(l.letter);
+  return out;
+}
+
+std::vector<std::string> technique_filter_suffixes() {
+  std::vector<std::string> out;
+  for (const MapFilterOps* f : map_filters()) out.push_back(f->suffix);
+  return out;
+}
+
+std::string technique_naming_text() {
+  std::string layouts, filters;
+  for (char c : technique_layout_letters()) layouts += (layouts.empty() ? "" : "/") + std::string(1, c);
+  for (const std::string& f : technique_filter_suffixes()) filters += (filters.empty() ? "" : "/") + f;
+  return "a layout letter " + layouts + " + a filter " + filters;
+}
+
 }  // namespace shadowlab

@@ -83,6 +83,12 @@ uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, cons
 std::vector<std::pair<std::string, std::string>> technique_list();
 // The registry as text: one line per technique, "name  description".
 std::string technique_list_text();
+// The naming rule from the registry's own tables: "a layout letter c/t/p/d + a filter
+// sm/vsm/esm/evsm/msm/pcss" (every layout with every filter is a technique).
+std::string technique_naming_text();
+// The layout letters and the filter suffixes, in registry order.
+std::vector<char> technique_layout_letters();
+std::vector<std::string> technique_filter_suffixes();
 
 // Shared rule for receivers: true when the pixel holds a surface that faces the light
 // (geometric N·L > 0).

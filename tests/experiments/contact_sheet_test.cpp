@@ -53,7 +53,8 @@ ContactSheetStyle small_style() {
 TEST(ContactSheet, SizeFollowsTheLayoutFormula) {
   // 102×61 masks, cells at most 64 wide: factor ceil(102/64) = 2, cells ceil(102/2) = 51 ×
   // ceil(61/2) = 31. Widest row label "TSM:PCF=3" is 9 glyphs: 9·6·2 − 2 = 106 px, so
-  // left = 6 + 106 + 6 = 118; top = 6 + 14 + 6 = 26. Columns REF + 3.
+  // left = 6 + 106 + 12 (one glyph advance at scale 2) + 2 (the frame) = 126; top = 6 + 14 + 6
+  // = 26. Columns REF + 3.
   ContactSheetStyle style = small_style();
   style.max_cell_width = 64;
   const std::vector<std::string> rows = {"CSM", "TSM:PCF=3"}, cols = {"128", "256", "512"};
@@ -61,16 +62,16 @@ TEST(ContactSheet, SizeFollowsTheLayoutFormula) {
   const std::vector<std::vector<const ImageF*>> cells = {{&m, &m, &m}, {&m, nullptr, &m}};
   const ImageF sheet = contact_sheet(rows, cols, cells, &m, style);
   EXPECT_EQ(sheet.channels, 1);
-  EXPECT_EQ(sheet.width, 118 + 4 * 51 + 3 * 2 + 6);
+  EXPECT_EQ(sheet.width, 126 + 4 * 51 + 3 * 2 + 6);
   EXPECT_EQ(sheet.height, 26 + 2 * 31 + 1 * 2 + 6);
   const ContactSheetLayout l = contact_sheet_layout(rows, cols, 102, 61, true, style);
   EXPECT_EQ(l.factor, 2);
   EXPECT_EQ(l.cell_width, 51);
   EXPECT_EQ(l.cell_height, 31);
   EXPECT_EQ(l.font_scale, 2);
-  EXPECT_EQ(l.left, 118);
+  EXPECT_EQ(l.left, 126);
   EXPECT_EQ(l.top, 26);
-  EXPECT_EQ(l.cell_x(2), 118 + 2 * 53);
+  EXPECT_EQ(l.cell_x(2), 126 + 2 * 53);
   EXPECT_EQ(l.cell_y(1), 26 + 33);
   // Without the reference there is one column fewer.
   const ImageF no_ref = contact_sheet(rows, cols, cells, nullptr, style);
@@ -83,9 +84,9 @@ TEST(ContactSheet, FontShrinksWhenColumnLabelsWouldOverlap) {
   const ContactSheetLayout l = contact_sheet_layout({"TSM:PCF=3"}, {"1024"}, 102, 61, false, small_style());
   EXPECT_EQ(l.cell_width, 26);
   EXPECT_EQ(l.font_scale, 1);
-  EXPECT_EQ(l.left, 6 + 53 + 6);
+  EXPECT_EQ(l.left, 6 + 53 + 6 + 2);  // one glyph advance at scale 1, the 2 px frame
   EXPECT_EQ(l.top, 6 + 7 + 6);
-  EXPECT_EQ(l.width, 65 + 26 + 6);
+  EXPECT_EQ(l.width, 67 + 26 + 6);
   // "512" at scale 2 is 34 px: still too wide for 28 → scale 1 too; "64" (22 px) fits at 2.
   EXPECT_EQ(contact_sheet_layout({"A"}, {"512"}, 102, 61, false, small_style()).font_scale, 1);
   EXPECT_EQ(contact_sheet_layout({"A"}, {"64"}, 102, 61, false, small_style()).font_scale, 2);
@@ -187,6 +188,34 @@ TEST(ContactSheet, BadMasksAreInputErrors) {
   // Only null cells next to a reference are fine: the reference fixes the size.
   const ImageF ok = contact_sheet({"A"}, {"1"}, {{nullptr}}, &a);
   EXPECT_GT(ok.width, 2 * 40);
+}
+
+// The longest row label is followed by background before the first image: in its row, scanning
+// right from the label's last ink pixel, at least one glyph advance (6 px at scale 1) of
+// background comes before the first pixel that is not background (the grid's frame or a cell).
+TEST(ContactSheet, LongestRowLabelKeepsAGapBeforeTheFirstImage) {
+  for (const int scale : {1, 2}) {
+    ContactSheetStyle style = small_style();
+    style.font_scale = scale;
+    style.max_cell_width = 64;
+    const std::vector<std::string> rows = {"CSM", "TEVSM:MOMENTS=4,BLUR=5"}, cols = {"16"};
+    ImageF dark(64, 40, 1, 0.0f);  // a black cell: as dark as the ink, so only the gap tells
+    const ImageF sheet = contact_sheet(rows, cols, {{&dark}, {&dark}}, &dark, style);
+    const ContactSheetLayout l = contact_sheet_layout(rows, cols, 64, 40, true, style);
+    ASSERT_EQ(l.font_scale, scale);
+    int worst_gap = 1 << 30;
+    for (int y = l.cell_y(1); y < l.cell_y(1) + l.cell_height; ++y) {
+      int last_ink = -1;
+      for (int x = 0; x < text_width(rows[1], scale) + style.padding; ++x)
+        if (sheet.at(x, y) == style.ink) last_ink = x;
+      if (last_ink < 0) continue;  // a row of the band the glyphs leave empty
+      int x = last_ink + 1;
+      while (x < sheet.width && sheet.at(x, y) == style.background) ++x;
+      worst_gap = std::min(worst_gap, x - last_ink - 1);
+    }
+    ASSERT_NE(worst_gap, 1 << 30) << "no label ink found";
+    EXPECT_GE(worst_gap, kGlyphAdvance * scale) << "scale " << scale;
+  }
 }
 
 // Captions: the rows move apart by the caption strip (text height + 2); each caption's glyph

@@ -6,6 +6,8 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "experiments/bitmap_font.h"
+#include "experiments/contact_sheet.h"
 #include "experiments/flicker_run.h"
 #include "raster/gbuffer_pass.h"
 #include "scenes/scene_library.h"
@@ -271,6 +273,42 @@ TEST(Flicker, BadConfigIsRejectedBeforeAnyWork) {
   c.techniques = {"rt:spp=4"};
   fails(c, "--techniques");
   EXPECT_THROW(parse_flicker_path("light-zigzag", "--path"), InputError);
+}
+
+// flicker_worst.png says which strip is which: its top row is labelled "TECHNIQUE" and the spec,
+// the bottom one "REFERENCE", each column with its frame. The ink left of each row band is
+// exactly its label's glyphs (counted from draw_text of the label alone).
+TEST(Flicker, WorstStripLabelsTechniqueAndReference) {
+  const Scene scene = small_default(96, 72);
+  FlickerConfig c;
+  c.techniques = {"csm"};
+  c.resolutions = {64};
+  c.frames = 4;
+  c.spp = 4;
+  c.step = 0.01;
+  FlickerRow row;
+  row.spec = "csm:res=64";
+  row.technique = "csm";
+  row.res = 64;
+  row.worst_frame = 2;
+  const ImageF strip = flicker_strip(scene, c, 0.01, row, 2, 1);
+  // Frames 1 and 2 (the two around frame 2 that start at 1 or later).
+  const std::vector<std::string> labels = {"TECHNIQUE CSM:RES=64", "REFERENCE"};
+  ContactSheetStyle style;
+  style.max_cell_width = 96;
+  const ContactSheetLayout l = contact_sheet_layout(labels, {"FRAME 1", "FRAME 2"}, 96, 72, false, style);
+  ASSERT_EQ(strip.width, l.width);
+  ASSERT_EQ(strip.height, l.height);
+  for (int r = 0; r < 2; ++r) {
+    int ink = 0;
+    for (int y = l.cell_y(r); y < l.cell_y(r) + l.cell_height; ++y)
+      for (int x = 0; x < l.left - l.separator; ++x) ink += strip.at(x, y) == style.ink;
+    ImageF alone(text_width(labels[size_t(r)], l.font_scale), text_height(l.font_scale), 1, 1.0f);
+    draw_text(alone, 0, 0, labels[size_t(r)], l.font_scale, 0.0f);
+    int expected = 0;
+    for (float v : alone.data) expected += v == 0.0f;
+    EXPECT_EQ(ink, expected) << labels[size_t(r)];
+  }
 }
 
 }  // namespace

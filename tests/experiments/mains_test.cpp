@@ -373,9 +373,9 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
   EXPECT_NE(r.out.find("contact_sheet.png"), std::string::npos) << r.out;
   // The contact sheet: one row (CSM), columns REF, 32, 256 of 96×72 masks (no downscale), each
-  // with its total score (5 characters, "0.xyz") under it.
+  // with its total score labelled under it (11 characters, "total 0.xyz").
   const auto [w, h] = png_size(out + "/contact_sheet.png");
-  const std::vector<std::vector<std::string>> captions = {{"0.000", "0.000"}};
+  const std::vector<std::vector<std::string>> captions = {{"total 0.000", "total 0.000"}};
   const ContactSheetLayout l = contact_sheet_layout({"CSM"}, {"32", "256"}, 96, 72, true, {}, &captions);
   EXPECT_EQ(l.factor, 1);
   EXPECT_EQ(w, l.width);
@@ -401,9 +401,10 @@ TEST(Mains, SweepInputsAreCheckedBeforeAnyWork) {
   const std::string out = test::binary_path("sweep_checks_out");
   std::filesystem::remove_all(out);
   const std::string base = "resolution_sweep --quick --out " + out;
-  expect_clear_error(base + " --techniques ''", "--techniques: empty name");
-  expect_clear_error(base + " --techniques ,,", "--techniques: empty name");
-  expect_clear_error(base + " --techniques csm,,tsm", "--techniques: empty name");
+  expect_clear_error(base + " --techniques ''", "--techniques: is empty");
+  expect_clear_error(base + " --techniques ,,", "--techniques: ',,': item 1 of 3 is empty (a comma before the first spec)");
+  expect_clear_error(base + " --techniques csm,,tsm", "--techniques: 'csm,,tsm': item 2 of 3 is empty (two commas in a row)");
+  expect_clear_error(base + " --techniques csm,", "--techniques: 'csm,': item 2 of 2 is empty (a comma after the last spec)");
   expect_clear_error(base + " --techniques csm,csm", "given twice");
   expect_clear_error(base + " --resolutions 64,64", "given twice");
   expect_clear_error(base + " --resolutions 64,", "--resolutions");

@@ -28,6 +28,18 @@ TEST(ParamSpace, EveryDomainFormGivesItsValues) {
   EXPECT_EQ(parse_domain("5..5/1", "f"), (V{"5"}));
 }
 
+// README "Tuning": whole numbers below 1e15 exactly, others to 4 significant digits, an exponent
+// without '+' (the text a spec accepts). 1e18 and 1e16 are whole but beyond 1e15: "1e18";
+// 1/3 steps give 4 digits; 123456.5 and 123457.5 both read 1.235e5, so they are refused as one
+// value given twice rather than run as two.
+TEST(ParamSpace, ComputedValuesHaveFourSignificantDigits) {
+  EXPECT_EQ(parse_domain("0..1e18/lin2", "f"), (V{"0", "1e18"}));
+  EXPECT_EQ(parse_domain("1e16..1e18/x10", "f"), (V{"1e16", "1e17", "1e18"}));
+  EXPECT_EQ(parse_domain("1..2/lin4", "f"), (V{"1", "1.333", "1.667", "2"}));
+  EXPECT_EQ(parse_domain("123456.5|2", "f"), (V{"123456.5", "2"}));  // given values stay as given
+  EXPECT_THROW(parse_domain("123456.5..123457.5/lin2", "f"), InputError);
+}
+
 TEST(ParamSpace, PointsAreTheOdometerOfTheDomains) {
   const ParamSpace s = parse_param_space("csm:res=256..1024/x2,pcf=1|3", "--space");
   EXPECT_EQ(s.technique, "csm");

@@ -1,5 +1,7 @@
-// The Pareto front on hand-made sets with known fronts, and the SVG's structure: one marker and
-// label per point per panel, escaped text, decade ticks, rings on each panel's own front.
+// The Pareto front on hand-made sets with known fronts, and the SVG's structure: one marker per
+// point per panel, labels on the fronts, escaped text, decade ticks, rings on each panel's own
+// front; its geometry at 18 techniques x 4 resolutions (no overlapping labels, a legend that
+// fits the page).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,7 +109,7 @@ std::vector<PlotPoint> sample_points() {
           {"TSM 512", "tsm", 8.0, 0.8, 0.7}};
 }
 
-TEST(ParetoSvg, IsOneSvgElementWithOneMarkerAndLabelPerPointPerPanel) {
+TEST(ParetoSvg, IsOneSvgElementWithOneMarkerPerPointAndLabelsOnTheFronts) {
   const std::vector<PlotPoint> points = sample_points();
   const std::string svg = pareto_svg(points, "sweep");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
@@ -117,17 +119,90 @@ TEST(ParetoSvg, IsOneSvgElementWithOneMarkerAndLabelPerPointPerPanel) {
   EXPECT_EQ(count(svg, "<svg"), 1u);
   EXPECT_EQ(count(svg, "<script"), 0u);
   EXPECT_EQ(count(svg, "class=\"pt\""), 2 * points.size());
-  const std::vector<std::string> labels = texts_of_class(svg, "lbl");
-  ASSERT_EQ(labels.size(), 2 * points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    EXPECT_EQ(labels[i], points[i].label);
-    EXPECT_EQ(labels[points.size() + i], points[i].label);
-  }
+  // Labels on the fronts' points only, in time order: total #0, #1, #3; fidelity #0, #2.
+  EXPECT_EQ(texts_of_class(svg, "lbl"),
+            (std::vector<std::string>{"CSM 128", "CSM 256", "TSM 512", "CSM 128", "TSM 256"}));
   // One legend marker per series, first-appearance order.
   EXPECT_EQ(count(svg, "class=\"legend\""), 2u);
   EXPECT_LT(svg.find(">csm</text>"), svg.find(">tsm</text>"));
   // Deterministic text.
   EXPECT_EQ(svg, pareto_svg(points, "sweep"));
+}
+
+// An element's box for the overlap checks: x, y of a <text> (its baseline's start) and the text,
+// at a sans-serif font's mean advance of 0.55 em, cap height 0.72 em, descent 0.2 em.
+struct TextBox {
+  std::string text;
+  double x0, y0, x1, y1;
+};
+
+std::vector<TextBox> text_boxes(const std::string& svg, const std::string& cls) {
+  std::vector<TextBox> out;
+  const std::regex re("<text class=\"" + cls + "\" x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>([^<]*)</text>");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator(); ++it) {
+    const double x = std::stod((*it)[1].str()), y = std::stod((*it)[2].str()), f = std::stod((*it)[3].str());
+    const std::string t = (*it)[4].str();
+    out.push_back({t, x, y - 0.72 * f, x + 0.55 * f * double(t.size()), y + 0.2 * f});
+  }
+  return out;
+}
+
+bool overlap(const TextBox& a, const TextBox& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+// A sweep of 18 techniques x 4 resolutions (the flicker and tune default lists' size): times
+// grow with the resolution, scores spread so that many points crowd each other. No two point
+// labels overlap, every label names a point on its panel's front (found here by brute force),
+// each panel labels some of its front, and the legend's 18 entries neither overlap nor leave
+// the page.
+TEST(ParetoSvg, EighteenTechniquesAtFourResolutionsStayReadable) {
+  const char* names[18] = {"csm", "cvsm", "cesm", "cevsm", "cmsm", "cpcss", "tsm", "tvsm", "tesm",
+                           "tevsm", "tmsm", "tpcss", "dsm", "dvsm", "desm", "devsm", "dmsm", "dpcss"};
+  std::vector<PlotPoint> points;
+  for (int t = 0; t < 18; ++t)
+    for (int r = 0; r < 4; ++r) {
+      PlotPoint p;
+      p.series = names[t];
+      p.label = std::string(names[t]) + " " + std::to_string(128 << r);
+      p.time_ms = (1.0 + 0.15 * t) * std::pow(2.2, r);
+      p.total = 0.55 + 0.08 * r + 0.01 * ((t * 7) % 11);
+      p.fidelity = 0.6 + 0.07 * r - 0.008 * ((t * 5) % 9);
+      p.bytes = 1e6 * (1 + t % 3) * std::pow(4.0, r);
+      points.push_back(p);
+    }
+  const std::string svg = pareto_svg(points, "18 x 4");
+  const std::vector<TextBox> labels = text_boxes(svg, "lbl");
+  ASSERT_FALSE(labels.empty());
+  for (size_t i = 0; i < labels.size(); ++i)
+    for (size_t j = i + 1; j < labels.size(); ++j)
+      EXPECT_FALSE(overlap(labels[i], labels[j])) << labels[i].text << " / " << labels[j].text;
+  // The fronts by brute force over the three panels' (cost, score).
+  std::set<std::string> on_front;
+  for (int panel = 0; panel < 3; ++panel)
+    for (const PlotPoint& a : points) {
+      const double ca = panel == 2 ? a.bytes : a.time_ms, sa = panel == 1 ? a.fidelity : a.total;
+      bool dominated = false;
+      for (const PlotPoint& b : points) {
+        const double cb = panel == 2 ? b.bytes : b.time_ms, sb = panel == 1 ? b.fidelity : b.total;
+        dominated |= cb <= ca && sb >= sa && (cb < ca || sb > sa);
+      }
+      if (!dominated) on_front.insert(a.label);
+    }
+  for (const TextBox& l : labels) EXPECT_TRUE(on_front.count(l.text)) << l.text << " is not on a front";
+  EXPECT_LT(labels.size(), points.size());
+  // The legend: one text per series, no two overlapping, all inside the page's width.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex("<svg [^>]*width=\"([0-9.]+)\"")));
+  const double width = std::stod(m[1].str());
+  const std::vector<TextBox> legend = text_boxes(svg, "legendtext");
+  ASSERT_EQ(legend.size(), 18u + 1u);  // the series and "Pareto front"
+  for (size_t i = 0; i < legend.size(); ++i) {
+    EXPECT_LE(legend[i].x1, width) << legend[i].text;
+    for (size_t j = i + 1; j < legend.size(); ++j)
+      EXPECT_FALSE(overlap(legend[i], legend[j])) << legend[i].text << " / " << legend[j].text;
+    for (const TextBox& l : labels) EXPECT_FALSE(overlap(legend[i], l)) << legend[i].text << " / " << l.text;
+  }
 }
 
 TEST(ParetoSvg, EachPanelRingsItsOwnFront) {

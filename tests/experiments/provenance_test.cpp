@@ -115,5 +115,19 @@ TEST(Provenance, FromRefusesASceneWhoseFileChanged) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/c"));
 }
 
+// --from=FILE and --out=DIR beside it are the two-word forms (README: --flag=value works for
+// every flag).
+TEST(Provenance, FromTakesTheEqualsForm) {
+  const std::string dir = test::binary_path("provenance_from_equals");
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(run("render --technique csm:res=64 --width 32 --height 24 --repeats 1 --out " + dir + "/a").exit_code, 0);
+  const ProcResult r = run("render --from=" + dir + "/a/timing.json --out=" + dir + "/b");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json b = read_json(dir + "/b/timing.json");
+  std::vector<std::string> cmd = b["provenance"]["command"];
+  EXPECT_NE(std::find(cmd.begin(), cmd.end(), "csm:res=64"), cmd.end());
+  expect_clear_error("render --from=", "--from: needs a file");
+}
+
 }  // namespace
 }  // namespace shadowlab

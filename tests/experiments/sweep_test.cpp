@@ -58,7 +58,7 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
   // each cell holds its mask unchanged, reference first.
   const ImageF sheet = sweep_contact_sheet(r, c);
   std::vector<std::vector<std::string>> captions(1);
-  for (const SweepRow& row : r.rows) captions[0].push_back(fmt::format("{:.3f}", row.report.total));
+  for (const SweepRow& row : r.rows) captions[0].push_back(fmt::format("total {:.3f}", row.report.total));
   const ContactSheetLayout l =
       contact_sheet_layout({"CSM"}, {"32", "128", "512"}, 256, 192, true, {}, &captions);
   ASSERT_EQ(l.factor, 1);
@@ -85,6 +85,27 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
     for (int y = 0; y < 192; ++y)
       for (int x = 0; x < 256; ++x) differ += colour.at(l.cell_x(3) + x, l.cell_y(0) + y, ch) != shaded.at(x, y, ch);
   EXPECT_EQ(differ, 0);
+}
+
+// The number under each cell says what it is: the sheet is exactly the one whose captions read
+// "total 0.834" (the row's total, named, 3 decimals).
+TEST(Sweep, ContactSheetCaptionsNameTheScore) {
+  SweepConfig c;
+  c.techniques = {"csm:pcf=3"};
+  c.resolutions = {64};
+  SweepResult r;
+  r.reference.result.mask = ImageF(64, 48, 1, 1.0f);
+  SweepRow row;
+  row.result.mask = ImageF(64, 48, 1, 0.25f);
+  row.report.total = 0.8341;
+  r.rows = {row};
+  const ImageF sheet = sweep_contact_sheet(r, c);
+  const std::vector<std::vector<std::string>> captions = {{"total 0.834"}};
+  const ImageF expected = contact_sheet({"CSM:PCF=3"}, {"64"}, {{&r.rows[0].result.mask}},
+                                        &r.reference.result.mask, {}, &captions);
+  ASSERT_EQ(sheet.width, expected.width);
+  ASSERT_EQ(sheet.height, expected.height);
+  EXPECT_TRUE(sheet.data == expected.data);
 }
 
 }  // namespace

@@ -87,7 +87,7 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
   std::ofstream(dir + "/shards/foreign.json") << foreign.dump();
   expect_clear_error("merge " + dir + "/shards/tune_shard0of3.json " + dir + "/shards/tune_shard1of3.json " + dir +
                          "/shards/foreign.json --out " + dir + "/x",
-                     "provenance 'scenes' differs");
+                     "provenance 'scenes/0/hash' differs from " + dir + "/shards/tune_shard0of3.json's (\"0000000000000000\" vs \"");
   nlohmann::json other = read_json(dir + "/shards/tune_shard2of3.json");
   other["config"]["spp"] = 9;
   std::ofstream(dir + "/shards/other.json") << other.dump();
@@ -106,12 +106,15 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
   std::ofstream(dir + "/shards/noconfig.json") << noconfig.dump();
   expect_clear_error("merge " + dir + "/shards/noconfig.json " + dir + "/shards/tune_shard1of3.json " + dir +
                          "/shards/tune_shard2of3.json --out " + dir + "/x",
-                     "malformed shard file");
+                     "noconfig.json: 'config' is missing");
   // The merged result repeats the whole run: its command has no --shard and no --out.
   const std::vector<std::string> merged_cmd = b["provenance"]["command"];
   EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--shard"), 0);
   EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--out"), 0);
-  expect_clear_error("tune --from=" + dir + "/merged/tune.json", "give the file as a separate word");
+  // --from=FILE is --from FILE (the README: --flag=value works for every flag): the same file's
+  // checks answer, here its --out given as --out= beside a flag --from does not allow.
+  expect_clear_error("tune --from=" + dir + "/merged/tune.json --out=" + dir + "/x --spp 3",
+                     "--from: only --out DIR and --threads N may be given with --from, got '--spp'");
   nlohmann::json missing = read_json(dir + "/shards/tune_shard2of3.json");
   missing["evaluations"].erase(0);
   std::ofstream(dir + "/shards/missing.json") << missing.dump();

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace shadowlab {
 namespace {
@@ -32,7 +33,7 @@ TEST(ContourImage, RampShiftedRightIsDarkWithContoursWhereExpected) {
       if (ref_line) {
         EXPECT_TRUE(r == 0.0f && g == 0.0f && b == 0.0f) << x;
       } else if (test_line) {
-        EXPECT_TRUE(r == 1.0f && g == 1.0f && b == 1.0f) << x;
+        EXPECT_TRUE(r == 1.0f && g == 0.85f && b == 0.0f) << x;  // yellow
       } else if (x >= 10) {
         // Darker test: blue; swapped (the test is the lighter one): red.
         EXPECT_EQ(swapped ? r : b, 1.0f) << x;
@@ -43,6 +44,28 @@ TEST(ContourImage, RampShiftedRightIsDarkWithContoursWhereExpected) {
       }
     }
   }
+}
+
+// The test's contour stays visible on any background: its colour, read from the picture, differs
+// from every grey g in [0, 1] (the dimmed scene is 0.35..0.85; a viewer's page is white) by at
+// least 0.4 in some channel. White (1, 1, 1) is 0.15 from the lit background and 0 from a page.
+TEST(ContourImage, TestContourDiffersFromEveryGrey) {
+  const int w = 101, h = 3;
+  ImageF ref(w, h, 1, 1.0f), test(w, h, 1);
+  for (int x = 0; x < w; ++x)
+    for (int y = 0; y < h; ++y) test.at(x, y) = (float(x) + 0.5f) / 100.0f;
+  // The test ramp's 10 % contour is column 9; the reference (all lit) has none.
+  const ImageF img = contour_comparison(test, ref);
+  const float c[3] = {img.at(9, 1, 0), img.at(9, 1, 1), img.at(9, 1, 2)};
+  for (int k = 0; k <= 100; ++k) {
+    const float g = float(k) / 100.0f;
+    const float d = std::max({std::fabs(c[0] - g), std::fabs(c[1] - g), std::fabs(c[2] - g)});
+    EXPECT_GE(d, 0.4f) << "contour colour " << c[0] << "," << c[1] << "," << c[2] << " vs grey " << g;
+  }
+  // And from the lit background next to it (column 50, where the test is 0.5: a blue tint, so
+  // take a lit pixel of an all-lit pair instead).
+  const ImageF lit = contour_comparison(ref, ref);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_FLOAT_EQ(lit.at(50, 1, ch), 0.85f);
 }
 
 }  // namespace

@@ -84,6 +84,20 @@ TEST(ObjLoader, MalformedFilesAreInputErrorsNamingTheFile) {
   }
 }
 
+// Every index error names the line of the face that makes it, forward references checked at the
+// end of the file included (the largest index's first use; the face on line 5 here).
+TEST(ObjLoader, EveryIndexErrorNamesItsLine) {
+  const std::string tri = std::string(kTriangle) + "f 1 2 3\n";  // lines 1-4
+  expect_load_error(write_file("fwd_vertex.obj", tri + "f 1 2 9\nv 0 0 1\nf 1 2 4\n"),
+                    {"fwd_vertex.obj", "line 5:", "vertex 9", "has 4"});
+  expect_load_error(write_file("fwd_normal.obj", tri + "vn 0 0 1\nf 1//1 2//1 3//2\n"),
+                    {"fwd_normal.obj", "line 6:", "normal 2", "has 1"});
+  expect_load_error(write_file("fwd_texcoord.obj", tri + "vt 0 0\nf 1/3 2/1 3/1\n"),
+                    {"fwd_texcoord.obj", "line 6:", "texcoord 3", "has 1"});
+  expect_load_error(write_file("back_vertex.obj", tri + "f -1 -2 -9\n"),
+                    {"back_vertex.obj", "line 5:", "vertex -9"});
+}
+
 TEST(ObjLoader, NanAndInfVerticesNameTheVertex) {
   expect_load_error(write_file("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"),
                     {"nan.obj", "vertex 3", "NaN or infinite"});
