@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/spec.h"
 #include "core/parse_number.h"
 
 namespace shadowlab {
@@ -124,9 +125,12 @@ std::vector<std::string> parse_domain(const std::string& text, const std::string
     }
     for (double x : v) values.push_back(value_text(x));
   }
-  std::set<std::string> seen;
-  for (const std::string& s : values)
-    if (!seen.insert(s).second) throw fail("value " + s + " occurs twice");
+  // Each value once as parsed ("3|03" is one value twice): core/spec.h same_spec_value.
+  for (size_t i = 0; i < values.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (same_spec_value(values[i], values[j]))
+        throw fail("value " + values[i] + (values[i] == values[j] ? "" : " (the same as " + values[j] + ")") +
+                   " occurs twice");
   return values;
 }
 
@@ -149,6 +153,24 @@ ParamSpace parse_param_space(const std::string& text, const std::string& flag) {
     s.keys.push_back(std::move(d));
   }
   return s;
+}
+
+bool same_space(const ParamSpace& a, const ParamSpace& b) {
+  if (a.technique != b.technique || a.keys.size() != b.keys.size()) return false;
+  auto holds = [](const std::vector<std::string>& values, const std::string& v) {
+    for (const std::string& w : values)
+      if (same_spec_value(v, w)) return true;
+    return false;
+  };
+  for (const ParamDomain& da : a.keys) {
+    const ParamDomain* db = nullptr;
+    for (const ParamDomain& d : b.keys)
+      if (d.key == da.key) db = &d;
+    if (!db || db->values.size() != da.values.size()) return false;
+    for (const std::string& v : da.values)
+      if (!holds(db->values, v)) return false;
+  }
+  return true;
 }
 
 std::string space_point(const ParamSpace& space, size_t i) {

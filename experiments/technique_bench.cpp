@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/cli.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/technique.h"
@@ -41,7 +42,8 @@ int main(int argc, char** argv) {
     add_repeats(cl, repeats, 3, "interleaved: each round runs every technique once");
     if (!parse_command_line(cl, argc, argv)) return 0;
     std::vector<TechniqueSpec> specs;
-    for (const std::string& t : split_spec_list(techniques)) {
+    const std::vector<std::string> texts = split_spec_list(techniques);
+    for (const std::string& t : texts) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
       if (s.name == "rt") throw InputError("--techniques", "rt is not a light-map technique");
       // The targets compare every spec at one resolution: a spec's own res would be overridden.
@@ -51,10 +53,12 @@ int main(int argc, char** argv) {
       s.text = spec_text(s);
       validate_technique(s, "--techniques");
       specs.push_back(s);
+      reject_repeated_specs("--techniques", specs, texts);
     }
     const Scene scene = scene_from_options(common);
     GBuffer g;
     render_gbuffer(scene, g);
+    require_covered_view(scene, g);
     std::printf("scene %s: %zu triangles, %dx%d, %d threads, res %d, %d interleaved repeats\n",
                 scene.name.c_str(), scene.triangle_count(), g.width, g.height, thread_count(), res,
                 repeats);
