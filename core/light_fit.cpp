@@ -37,12 +37,7 @@ void cover_scene_with_light_range(Scene& scene) {
   scene.light.near = std::min(scene.light.near, 1e-3f * scene.light.far);
 }
 
-double light_depth_step(const PointLight& light) {
-  const vec3& p = light.position;
-  const double scale = std::max({double(light.far), std::fabs(double(p.x)), std::fabs(double(p.y)),
-                                 std::fabs(double(p.z))});
-  return scale * std::ldexp(1.0, -23);
-}
+double light_depth_step(const PointLight& light) { return double(light.far) * std::ldexp(1.0, -23); }
 
 double scene_span_texels(const Scene& scene, int res) {
   const Bounds b = scene_bounds(scene);

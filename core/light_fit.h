@@ -19,10 +19,11 @@ float covering_far(const Scene& scene);
 // min(near, 1e-3 × far), so that near stays a small fraction of the range.
 void cover_scene_with_light_range(Scene& scene);
 
-// The step of float depth at the light's range: float's spacing (2^-23 relative) at the larger
-// of far and the light's largest coordinate. Both |p - L| and the stored |p - L| / far are
-// rounded at that scale, so two points whose distances from the light differ by less are one
-// depth to every shadow map.
+// The step of float depth at the light's range: float's spacing (2^-23 relative) at far. The
+// stored |p - L| / far is rounded at that scale, so two points whose distances from the light
+// differ by less are one depth to every shadow map. (|p - L| itself loses p entirely once the
+// light is far beyond the scene's coordinates, but then far, which covers the scene, is larger
+// still; large coordinates of the scene and light together are the scene's own precision.)
 double light_depth_step(const PointLight& light);
 
 // Float depth must resolve the scene: light_depth_step at most kDepthStepsPerScene-th of the
