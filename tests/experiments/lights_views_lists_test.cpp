@@ -36,13 +36,14 @@ double lvl_mismatch(const ImageF& a, const ImageF& b) {
   return double(diff) / double(a.data.size());
 }
 
-// A light moved by --light-pos beyond the scene's own light range (the bunny's far is 1.5 m; the
-// light here is 3.3 m away): the maps that store the normalised distance |p - L| / far clamped
-// (16-bit depth) or warped (VSM's moments) must still agree with one Embree ray per pixel, which
-// knows no range. Their far grows to cover the scene as a scene file's does. The residue is
-// shadow-edge pixels at 64x48 (measured 0.9 % and 1.9 %); before the rule both lit nothing.
+// A light moved by --light-pos beyond the scene's own light range (the contact scene's far is
+// 8 m; its farthest corner is 11.4 m from this light): the maps that store the normalised
+// distance |p - L| / far clamped (16-bit depth) or warped (VSM's moments) must still agree with
+// one Embree ray per pixel, which knows no range. Their far grows to cover the scene as a scene
+// file's does. The residue is shadow-edge pixels at 64x48 (measured 0.9 % and 1.2 %; bound about
+// 3x); before the rule both lost the light on 41 % of the image.
 TEST(CommandLineLight, FarLightMapsAgreeWithHardRayTracing) {
-  const std::string scene = "--scene bunny --light-pos 1,3,1";
+  const std::string scene = "--scene contact --light-pos 6,5,2";
   const ImageF rt = lvl_render_mask(scene + " --technique rt:hard=1", "rt");
   ASSERT_FALSE(rt.data.empty());
   size_t shadowed = 0;
@@ -53,7 +54,7 @@ TEST(CommandLineLight, FarLightMapsAgreeWithHardRayTracing) {
   for (const char* spec : {"csm:res=1024,depth=16", "cvsm:res=1024"}) {
     const ImageF m = lvl_render_mask(scene + " --technique " + spec, "map");
     ASSERT_EQ(m.data.size(), rt.data.size()) << spec;
-    EXPECT_LT(lvl_mismatch(m, rt), 0.04) << spec;
+    EXPECT_LT(lvl_mismatch(m, rt), 0.03) << spec;
   }
 }
 
