@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
       reject_repeated_specs("--techniques", specs, texts);
     }
     const Scene scene = scene_from_options(common);
+    for (const TechniqueSpec& s : specs) validate_technique_for_scene(s, scene, "--techniques");
     GBuffer g;
     render_gbuffer(scene, g);
     require_covered_view(scene, g);
