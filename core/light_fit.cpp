@@ -27,7 +27,8 @@ double farthest_corner(const Bounds& b, const vec3& from) {
 float covering_far(const Scene& scene) {
   const Bounds b = scene_bounds(scene);
   const float reach = farthest_corner_distance(b, scene.light.position);
-  // In float where it is finite (the value every scene had before), else in double.
+  // In float where it is finite (farthest_corner_distance's bits, which the built-in framing
+  // shares), else in double (a light 1e20 m away overflows float's squares).
   return std::isfinite(1.02f * reach) ? 1.02f * reach
                                       : float(1.02 * farthest_corner(b, scene.light.position));
 }
