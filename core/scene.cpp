@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/light_fit.h"
 
 namespace shadowlab {
 
@@ -93,6 +94,8 @@ void validate_scene(const Scene& scene, const std::string& where) {
     throw InputError(where, "light position must be finite and radius >= 0");
   if (!(l.near > 0.0f) || !(l.far > l.near) || !std::isfinite(l.far))
     throw InputError(where, "light near/far must satisfy 0 < near < far < inf");
+  if (const LightFitProblem fit = light_fit_problem(scene); fit.kind != LightFitProblem::None)
+    throw InputError(where, fit.reason);
   if (scene.projector.enabled) {
     validate_projector(scene.projector, where);
     if (glm::length(scene.projector.position - l.position) > 1e-5f * (1.0f + glm::length(l.position)) ||

@@ -89,7 +89,8 @@ float farthest_corner_distance(const Bounds& b, const vec3& from);
 void compute_vertex_normals(Mesh& mesh);
 
 // Throws InputError(where, ...) if any vertex is NaN/Inf, an index is out of range, a material
-// index is invalid, the light radius is negative, or the camera is degenerate/absurd.
+// index is invalid, the light radius is negative, the light does not fit the scene
+// (core/light_fit.h light_fit_problem), or the camera is degenerate/absurd.
 void validate_scene(const Scene& scene, const std::string& where);
 
 // Camera matrices: view (world → view, camera looks down -z) and OpenGL-style projection

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/parse_number.h"
+#include "core/repeats.h"
 
 namespace shadowlab {
 
@@ -40,6 +41,24 @@ std::string spec_text(const Spec& spec) {
     sep = ',';
   }
   return text;
+}
+
+bool same_spec(const Spec& a, const Spec& b) {
+  if (a.name != b.name || a.params.size() != b.params.size()) return false;
+  for (auto ia = a.params.begin(), ib = b.params.begin(); ia != a.params.end(); ++ia, ++ib) {
+    if (ia->first != ib->first || !same_spec_value(ia->second, ib->second)) return false;
+  }
+  return true;
+}
+
+bool same_spec_value(const std::string& a, const std::string& b) {
+  double x = 0.0, y = 0.0;
+  return parse_double(a, x) && parse_double(b, y) ? x == y : a == b;
+}
+
+void reject_repeated_specs(const std::string& flag, const std::vector<Spec>& specs,
+                           const std::vector<std::string>& texts) {
+  reject_repeats(flag, specs, same_spec, [&](size_t i) { return i < texts.size() ? texts[i] : specs[i].text; });
 }
 
 std::vector<std::string> split_spec_list(const std::string& text) {

@@ -19,6 +19,15 @@ struct Spec {
 Spec parse_spec(const std::string& text, const std::string& flag);
 // Canonical text of a spec: "name:k=v,..." with keys in sorted order ("name" alone without params).
 std::string spec_text(const Spec& spec);
+// True when a and b name the same thing: the same name and keys, each value equal as parsed
+// (numbers as numbers: "pcf=3" and "pcf=03", "bias=0.01" and "bias=1e-2"; other values as text).
+// Keys a spec leaves at their defaults are not filled in: "csm" and "csm:pcf=1" differ.
+bool same_spec(const Spec& a, const Spec& b);
+// One value of a spec as parsed: numbers as numbers ("3" and "03"), anything else as text.
+bool same_spec_value(const std::string& a, const std::string& b);
+// reject_repeats (core/repeats.h) over parsed specs by same_spec, naming them as written.
+void reject_repeated_specs(const std::string& flag, const std::vector<Spec>& specs,
+                           const std::vector<std::string>& texts);
 // Splits a comma-separated list of specs, where a spec's own parameters also use commas:
 // a token with '=' but no ':' continues the previous spec. "csm:res=64,pcf=3,rt" →
 // {"csm:res=64,pcf=3", "rt"}. Empty items are kept ("csm,,rt" → {"csm", "", "rt"}) so that

@@ -1,6 +1,7 @@
 #include "experiments/cli.h"
 #include "experiments/environment.h"
 #include "experiments/provenance.h"
+#include "experiments/view_check.h"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -17,9 +18,11 @@
 
 #include "core/error.h"
 #include "core/notes.h"
+#include "core/light_fit.h"
 #include "scenes/obj_loader.h"
 #include "core/parallel.h"
 #include "core/parse_number.h"
+#include "core/repeats.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/scene_file.h"
 #include "scenes/scene_library.h"
@@ -165,8 +168,9 @@ void add_int_list(CommandLine& cl, const std::string& flag, const std::string& p
                   const std::string& help, std::vector<int>& value, int lo, int hi) {
   add_valued(cl, flag, placeholder, help, [flag, &value, lo, hi](const std::string& s) {
     value.clear();
-    for (const std::string& item : split(s, ','))
-      value.push_back(int_in(flag, item, lo, hi));
+    const std::vector<std::string> items = split(s, ',');
+    for (const std::string& item : items) value.push_back(int_in(flag, item, lo, hi));
+    reject_repeats(flag, value, items);
   });
 }
 
@@ -180,6 +184,7 @@ void add_double_list(CommandLine& cl, const std::string& flag, const std::string
         throw InputError(flag, item + " is outside [" + number_text(lo) + ", " + number_text(hi) + "]");
       value.push_back(v);
     }
+    reject_repeats(flag, value, split(s, ','));
   });
 }
 
@@ -237,7 +242,7 @@ void add_common_options(CommandLine& cl, CommonOptions& o) {
   o.out = "out/" + cl.program;
   std::string names;
   for (const std::string& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-  add_text(cl, "--scene", "S", "built-in scene name (" + names + "), an .obj file, a .gltf/.glb file, or a .json scene file (default: default)", o.scene);
+  add_text(cl, "--scene", "S", "built-in scene name (" + names + "), an .obj file, a .gltf/.glb file, or a .json scene file (default: default)", o.scene, &o.scene_given);
   add_switch(cl, "--ground", "add a ground quad under the scene (for a lone model: 2 x the bounds diagonal, at the bounds' bottom)", o.ground);
   add_int(cl, "--light", "N", "glTF scenes: which of the file's lights to use, in node order (default 0)", o.gltf_light, 0, 1 << 20);
   add_int(cl, "--camera", "N", "glTF scenes: which of the file's cameras to use, in node order (default 0)", o.gltf_camera, 0, 1 << 20);
@@ -267,6 +272,10 @@ void set_default_size(CommandLine& cl, CommonOptions& o, int width, int height, 
   o.default_height = height;
   cl.app->get_option("--width")->description("image width in pixels (default " + std::to_string(width) + ": " + why + ")");
   cl.app->get_option("--height")->description("image height in pixels (default " + std::to_string(height) + ")");
+}
+
+void reject_scene_with_suite(const CommonOptions& o) {
+  if (o.scene_given) throw InputError("--suite", "conflicts with --scene (the suite names its scenes)");
 }
 
 std::vector<std::string> common_scene_flags() {
@@ -392,6 +401,29 @@ void apply_projector_options(const CommonOptions& o, Scene& scene) {
   set_projector(scene, std::move(p), "--slide");
 }
 
+// The light must fit the scene (core/light_fit.h); a problem is blamed on the flag that caused
+// it, else left to validate_scene, which names the scene.
+void check_light_fit(const CommonOptions& o, const Scene& scene) {
+  const LightFitProblem fit = light_fit_problem(scene);
+  std::vector<std::pair<bool, const char*>> suspects;  // (given, flag) in the order blamed
+  switch (fit.kind) {
+    case LightFitProblem::None:
+      return;
+    case LightFitProblem::Depth:
+      suspects = {{bool(o.light_pos), "--light-pos"}, {bool(o.projector_pos), "--projector-pos"}};
+      break;
+    case LightFitProblem::Camera:
+      suspects = {{bool(o.light_radius), "--light-radius"}, {bool(o.eye), "--eye"},
+                  {bool(o.light_pos), "--light-pos"}};
+      break;
+    case LightFitProblem::Scene:
+      suspects = {{bool(o.light_radius), "--light-radius"}, {bool(o.light_pos), "--light-pos"}};
+      break;
+  }
+  for (const auto& [given, flag] : suspects)
+    if (given) throw InputError(flag, fit.reason);
+}
+
 }  // namespace
 
 Scene scene_from_options(const CommonOptions& o) {
@@ -413,7 +445,12 @@ Scene scene_from_options(const CommonOptions& o) {
   cam.eye = o.eye.value_or(cam.eye);
   cam.target = o.target.value_or(cam.target);
   if (o.fov) cam.fov_y_deg = float(*o.fov);
-  scene.light.position = o.light_pos.value_or(scene.light.position);
+  if (o.light_pos) {
+    // A light the command line places gets the range scene files give theirs: it covers the
+    // whole scene (the ground included), so no point lies beyond the light's far.
+    scene.light.position = *o.light_pos;
+    cover_scene_with_light_range(scene);
+  }
   if (o.light_radius) scene.light.radius = float(*o.light_radius);
   if (o.alpha_cutoff && o.no_alpha) throw InputError("--alpha-cutoff", "conflicts with --no-alpha");
   for (Material& m : scene.materials) {
@@ -421,7 +458,13 @@ Scene scene_from_options(const CommonOptions& o) {
     if (o.alpha_cutoff) m.alpha_cutoff = float(*o.alpha_cutoff);
   }
   apply_projector_options(o, scene);
-  validate_scene(scene, is_file ? name : "--scene " + name);
+  check_light_fit(o, scene);
+  const std::string where = is_file ? name : "--scene " + name;
+  validate_scene(scene, where);
+  // A view that sees nothing (experiments/view_check.h), blamed on the view flag given.
+  const std::string view_blame = o.eye ? "--eye" : o.target ? "--target" : o.fov ? "--fov" : where;
+  check_view_sees_bounds(scene, view_blame);
+  set_view_blame(scene.name, view_blame);
   check_recorded_scene(scene);  // --from: the scene must be the recorded one
   return scene;
 }

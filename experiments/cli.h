@@ -46,10 +46,12 @@ void add_double(CommandLine& cl, const std::string& flag, const std::string& pla
                 const std::string& help, double& value, double lo, double hi);
 void add_double(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                 const std::string& help, std::optional<double>& value, double lo, double hi);
-// Comma-separated integers, each in [lo, hi]; no empty items.
+// Comma-separated integers, each in [lo, hi]; no empty items, no value twice as parsed
+// ("64,064": core/repeats.h).
 void add_int_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                   const std::string& help, std::vector<int>& value, int lo, int hi);
-// Comma-separated numbers, each in [lo, hi]; no empty items.
+// Comma-separated numbers, each in [lo, hi]; no empty items, no value twice as parsed
+// ("4,4.0": core/repeats.h).
 void add_double_list(CommandLine& cl, const std::string& flag, const std::string& placeholder,
                      const std::string& help, std::vector<double>& value, double lo, double hi);
 void add_vec3(CommandLine& cl, const std::string& flag, const std::string& help,
@@ -67,6 +69,7 @@ void add_switch(CommandLine& cl, const std::string& flag, const std::string& hel
 // keep the scene's own values.
 struct CommonOptions {
   std::string scene = "default";
+  bool scene_given = false;          // --scene appeared (even naming the default)
   std::optional<int> width, height;  // (--threads is applied as it is parsed)
   std::optional<int> gltf_light, gltf_camera;  // --light, --camera (glTF scenes)
   bool ground = false;                         // --ground
@@ -87,6 +90,9 @@ void add_common_options(CommandLine& cl, CommonOptions& o);
 // The program's own image size without --width/--height (instead of the scene camera's): set
 // in o, applied by scene_from_options, and stated as the default in --help.
 void set_default_size(CommandLine& cl, CommonOptions& o, int width, int height, const std::string& why);
+// --suite runs its own list of scenes: any --scene beside it (the default's name included) is an
+// InputError("--suite", "conflicts with --scene").
+void reject_scene_with_suite(const CommonOptions& o);
 // Every common flag but --threads (the ones that describe a scene, its view, memory and output).
 std::vector<std::string> common_scene_flags();
 
@@ -102,7 +108,11 @@ void mark_unused(CommandLine& cl, const std::vector<std::string>& flags, const s
 bool parse_command_line(CommandLine& cl, int argc, char** argv, size_t max_positional = 0);
 
 // The scene the common options describe: a built-in name or an .obj path, with every override
-// applied and validated (a slide makes the light a projector).
+// applied and validated (a slide makes the light a projector). A light placed by --light-pos
+// gets a far that covers the scene (core/light_fit.h cover_scene_with_light_range); a light that
+// does not fit the scene (light_fit_problem) is an InputError naming the flag that placed or
+// sized it; a view whose frustum misses the scene is one naming the view flag
+// (experiments/view_check.h).
 Scene scene_from_options(const CommonOptions& o);
 
 // The --max-memory limit in bytes (0: not given).

@@ -6,8 +6,10 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/repeats.h"
 #include "core/rng.h"
 #include "experiments/contact_sheet.h"
+#include "experiments/view_check.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/technique.h"
 
@@ -205,8 +207,12 @@ void validate_flicker(const Scene& scene, const FlickerConfig& c) {
   if (c.frames < 2) throw InputError("--frames", "needs at least 2 frames (a change needs two)");
   if (c.jitter && !light_path(c.path))
     throw InputError("--jitter", "texel snapping applies to the light paths: a point light's maps do not follow the camera");
+  reject_repeats("--resolutions", c.resolutions);
+  std::vector<TechniqueSpec> specs;
   for (const std::string& t : c.techniques) {
     const TechniqueSpec s = parse_technique_spec(t, "--techniques");
+    specs.push_back(s);
+    reject_repeated_specs("--techniques", specs, c.techniques);
     if (s.name == "rt") {
       if (!s.params.empty())
         throw InputError("--techniques", "rt is the reference (--spp sets its samples); give it without keys");
@@ -235,6 +241,7 @@ FlickerResult measure_flicker(const Scene& scene, const FlickerConfig& c) {
     const Scene fs = flicker_frame_scene(scene, c, result.step, f);
     // The light paths keep the camera, so one GBuffer serves every frame.
     if (f == 0 || !light_path(c.path)) render_gbuffer(fs, g);
+    if (f == 0) require_covered_view(fs, g);  // before the first reference
     const ImageF ref = frame_mask(fs, reference_spec(c), g);
     // The frame's scene once per snap grid (one per resolution with --jitter).
     std::map<double, Scene> snapped;

@@ -9,6 +9,7 @@
 
 #include "scenes/bunny_scene.h"
 #include "core/error.h"
+#include "core/repeats.h"
 #include "core/gbuffer_shading.h"
 #include "core/image_io.h"
 #include "scenes/mesh_lod.h"
@@ -16,6 +17,7 @@
 #include "scenes/scene_library.h"
 #include "core/texture.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/contact_sheet.h"
 #include "metric/image_error.h"
 #include "metric/ssim.h"
@@ -55,6 +57,15 @@ MaskingResult run_lod_masking(const Scene& base, const MaskingConfig& c) {
   // The full mesh is the reference of every comparison: it always comes first.
   std::vector<size_t> levels = c.levels;
   levels.erase(std::remove(levels.begin(), levels.end(), size_t(0)), levels.end());
+  // Each level once, and each below the full mesh: a target at or above its triangle count
+  // would be the full mesh again, not a level of detail.
+  reject_repeats("--levels", levels);
+  const size_t full = base.meshes[kBunnyMesh].triangle_count();
+  for (size_t target : levels)
+    if (target >= full)
+      throw InputError("--levels", std::to_string(target) + " is not below the mesh's " +
+                                       std::to_string(full) +
+                                       " triangles (the full mesh is always the reference)");
   levels.insert(levels.begin(), 0);
 
   MaskingResult out;
@@ -72,6 +83,7 @@ MaskingResult run_lod_masking(const Scene& base, const MaskingConfig& c) {
                                                       &level.from_cache, "--levels");
     level.triangles = scene.meshes[kBunnyMesh].triangle_count();
     level.camera_ms = median_ms(c.repeats, [&] { render_gbuffer(scene, g); });
+    require_covered_view(scene, g);
     fill_shading_attributes(scene, g);  // for every slide's picture (untimed)
     std::vector<double> shadow_ms;
     for (size_t k = 0; k < slides.size(); ++k) {

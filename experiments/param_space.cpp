@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <set>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/spec.h"
 #include "core/parse_number.h"
 
 namespace shadowlab {
@@ -126,9 +128,21 @@ std::vector<std::string> parse_domain(const std::string& text, const std::string
     }
     for (double x : v) values.push_back(value_text(x));
   }
-  std::set<std::string> seen;
-  for (const std::string& s : values)
-    if (!seen.insert(s).second) throw fail("value " + s + " occurs twice");
+  // Each value once as parsed ("3|03" is one value twice: core/spec.h same_spec_value), found
+  // through ordered sets (a domain holds up to kMaxDomainValues values).
+  std::map<double, size_t> numbers;
+  std::map<std::string, size_t> texts;
+  for (size_t i = 0; i < values.size(); ++i) {
+    double x = 0.0;
+    size_t first_index = i;
+    if (parse_double(values[i], x))
+      first_index = numbers.emplace(x, i).first->second;
+    else
+      first_index = texts.emplace(values[i], i).first->second;
+    if (first_index == i) continue;
+    const std::string& first = values[first_index];
+    throw fail("value " + values[i] + (values[i] == first ? "" : " (the same as " + first + ")") + " occurs twice");
+  }
   return values;
 }
 
@@ -151,6 +165,35 @@ ParamSpace parse_param_space(const std::string& text, const std::string& flag) {
     s.keys.push_back(std::move(d));
   }
   return s;
+}
+
+namespace {
+
+// A domain's values as parsed: numbers as numbers, the rest as text (core/spec.h same_spec_value).
+std::pair<std::set<double>, std::set<std::string>> parsed_values(const std::vector<std::string>& values) {
+  std::pair<std::set<double>, std::set<std::string>> out;
+  for (const std::string& v : values) {
+    double x = 0.0;
+    if (parse_double(v, x))
+      out.first.insert(x);
+    else
+      out.second.insert(v);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool same_space(const ParamSpace& a, const ParamSpace& b) {
+  if (a.technique != b.technique || a.keys.size() != b.keys.size()) return false;
+  for (const ParamDomain& da : a.keys) {
+    const ParamDomain* db = nullptr;
+    for (const ParamDomain& d : b.keys)
+      if (d.key == da.key) db = &d;
+    if (!db || db->values.size() != da.values.size() || parsed_values(da.values) != parsed_values(db->values))
+      return false;
+  }
+  return true;
 }
 
 std::string space_point(const ParamSpace& space, size_t i) {

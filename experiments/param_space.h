@@ -35,6 +35,10 @@ struct ParamSpace {
 
 ParamSpace parse_param_space(const std::string& text, const std::string& flag);
 
+// True when a and b describe the same points: one technique, the same keys, and each key's values
+// the same set as parsed (core/spec.h same_spec_value: "pcf=3|1" and "pcf=01|3" are one domain).
+bool same_space(const ParamSpace& a, const ParamSpace& b);
+
 // The point with odometer index i (last key fastest) as spec text "name:k=v,…" (keys in the
 // space's order; parse_technique_spec makes it canonical).
 std::string space_point(const ParamSpace& space, size_t i);

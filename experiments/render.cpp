@@ -6,6 +6,7 @@
 
 #include "core/image_io.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/cli.h"
 #include "experiments/provenance.h"
 #include "experiments/memory_check.h"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
 
     GBuffer g;
     const double camera_ms = median_ms(repeats, [&] { render_gbuffer(scene, g); });
+    require_covered_view(scene, g);
     RunOptions opt;
     opt.repeats = repeats;
     opt.cache_dir = no_cache ? "" : default_cache_dir();

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> suite_scenes;
     if (!suite.empty()) {
       suite_scenes = scene_suite(suite, "--suite");
-      if (common.scene != "default") throw InputError("--suite", "conflicts with --scene");
+      reject_scene_with_suite(common);
       if (!plot.empty() || plot_given) throw InputError("--plot", "is per scene; not with --suite");
       if (c.shards > 1) throw InputError("--shard", "not with --suite (shard each scene's sweep instead)");
     }

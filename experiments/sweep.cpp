@@ -16,7 +16,9 @@
 #include "core/error.h"
 #include "core/gbuffer_shading.h"
 #include "core/output_file.h"
+#include "core/repeats.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/step_progress.h"
 #include "experiments/contact_sheet.h"
 #include "experiments/memory_check.h"
@@ -46,11 +48,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   // Every input is checked before the first expensive step (the camera pass and reference).
   if (config.techniques.empty()) throw InputError("--techniques", "is empty");
   if (config.resolutions.empty()) throw InputError("--resolutions", "is empty");
-  for (size_t i = 0; i < config.resolutions.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (config.resolutions[i] == config.resolutions[j])
-        throw InputError("--resolutions", std::to_string(config.resolutions[i]) +
-                                              " given twice (their files would overwrite each other)");
+  reject_repeats("--resolutions", config.resolutions);
   std::vector<TechniqueSpec> specs;
   for (const std::string& t : config.techniques) {
     TechniqueSpec s = parse_technique_spec(t, "--techniques");
@@ -59,10 +57,8 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
       throw InputError("--techniques", "rt has no map resolution: the sweep runs light-map techniques at each of "
                                        "--resolutions against its ray-traced reference (--spp)");
     if (s.params.count("res")) throw InputError("--techniques", "'" + t + "': res is swept by --resolutions");
-    for (const TechniqueSpec& other : specs)
-      if (other.text == s.text)
-        throw InputError("--techniques", "'" + s.text + "' given twice (its files would overwrite each other)");
     specs.push_back(s);
+    reject_repeated_specs("--techniques", specs, config.techniques);
     for (int r : config.resolutions) {
       TechniqueSpec probe = s;
       probe.params["res"] = std::to_string(r);
@@ -84,6 +80,7 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   out.provenance = provenance_json({&scene}, config.spp, config.repeats);
   GBuffer g;
   out.camera_ms = median_ms(config.repeats, [&] { render_gbuffer(scene, g); });
+  require_covered_view(scene, g);  // before the reference: an empty view scores nothing
   // The shaded images' normals and uvs, once for every row (untimed: only the pictures need
   // them, core/gbuffer_shading.h).
   fill_shading_attributes(scene, g);

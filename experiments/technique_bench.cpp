@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/cli.h"
 #include "raster/gbuffer_pass.h"
 #include "techniques/technique.h"
@@ -44,7 +45,8 @@ int main(int argc, char** argv) {
     // before any work, and its errors name --techniques.
     const Scene scene = scene_from_options(common);
     std::vector<TechniqueSpec> specs;
-    for (const std::string& t : spec_list_items(techniques, "--techniques")) {
+    const std::vector<std::string> texts = spec_list_items(techniques, "--techniques");
+    for (const std::string& t : texts) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
       if (s.name == "rt")
         throw InputError("--techniques", "rt has no map resolution: technique_bench times light-map techniques at --res");
@@ -55,9 +57,11 @@ int main(int argc, char** argv) {
       s.text = spec_text(s);
       validate_technique_for_scene(s, scene, "--techniques");
       specs.push_back(s);
+      reject_repeated_specs("--techniques", specs, texts);
     }
     GBuffer g;
     render_gbuffer(scene, g);
+    require_covered_view(scene, g);
     std::printf("scene %s: %zu triangles, %dx%d, %d threads, res %d, %d interleaved repeats\n",
                 scene.name.c_str(), scene.triangle_count(), g.width, g.height, thread_count(), res,
                 repeats);

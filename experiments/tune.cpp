@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
       c.spaces.push_back(parse_param_space(s, "--space"));
     std::vector<Scene> scenes;
     if (!suite.empty()) {
-      if (common.scene != "default") throw InputError("--suite", "conflicts with --scene");
+      reject_scene_with_suite(common);
       for (const std::string& name : scene_suite(suite, "--suite")) {
         CommonOptions o = common;
         o.scene = name;

@@ -7,7 +7,9 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/repeats.h"
 #include "core/timer.h"
+#include "experiments/view_check.h"
 #include "experiments/step_progress.h"
 #include "experiments/memory_check.h"
 #include "experiments/pareto_plot.h"
@@ -68,6 +70,7 @@ SceneRung prepare(const Scene& scene, int rung, const TuneConfig& c) {
   SceneRung r;
   r.scene = rung_scene(scene, rung, c);
   render_gbuffer(r.scene, r.g);
+  require_covered_view(r.scene, r.g);  // before the reference: an empty view scores nothing
   if (c.weights.performance > 0.0)
     r.camera_ms = median_ms(c.repeats, [&] { render_gbuffer(r.scene, r.g); });
   const int spp = rung == 0 ? c.small_spp : c.spp;
@@ -185,10 +188,8 @@ void check_tune(const std::vector<Scene>& scenes, const TuneConfig& c) {
     throw InputError("--budget-ms", "give --budget-ms and/or --budget-bytes");
   if (c.strategy != "auto" && c.strategy != "grid" && c.strategy != "halving")
     throw InputError("--strategy", "expected grid, halving or auto, got '" + c.strategy + "'");
-  for (size_t i = 0; i < c.spaces.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (c.spaces[i].text == c.spaces[j].text)
-        throw InputError("--space", "'" + c.spaces[i].text + "' given twice");
+  reject_repeats("--space", c.spaces, same_space,
+                 [&](size_t i) { return c.spaces[i].text; });
   // The point count before expanding anything: a space can describe billions of points.
   const size_t points = total_points(c);
   const size_t evals = points > std::numeric_limits<size_t>::max() / std::max<size_t>(1, scenes.size())

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/light_fit.h"
 #include "core/text.h"
 #include "core/error.h"
 #include "core/json_file.h"
@@ -226,9 +227,7 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
                   vec3(0, 0, side), vec3(side, 0, 0), 8, 8);
   }
   if (!far_given && !top.has("projector")) {
-    const float reach = farthest_corner_distance(scene_bounds(s), s.light.position);
-    s.light.far = std::max(s.light.far, 1.02f * reach);
-    s.light.near = std::min(s.light.near, 1e-3f * s.light.far);
+    cover_scene_with_light_range(s);
   }
   if (top.has("projector")) {
     const Reader p(path, top.at("projector"), "projector");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/light_fit.h"
 #include "core/parse_number.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
@@ -95,9 +96,7 @@ void set_projector(Scene& scene, Projector projector, const std::string& where) 
   scene.projector = std::move(projector);
   scene.light.position = scene.projector.position;
   scene.light.radius = 0.0f;
-  const float reach = farthest_corner_distance(scene_bounds(scene), scene.light.position);
-  scene.light.far = std::max(scene.light.far, 1.02f * reach);
-  scene.light.near = std::min(scene.light.near, 1e-3f * scene.light.far);
+  cover_scene_with_light_range(scene);
 }
 
 }  // namespace shadowlab

@@ -2,9 +2,13 @@
 
 #include <functional>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
+#include "core/light_fit.h"
 #include "core/parallel.h"
 #include "techniques/light_map.h"
+#include "techniques/map_params.h"
 #include "techniques/map_filter.h"
 #include "techniques/ray_traced.h"
 
@@ -20,7 +24,24 @@ struct Entry {
   std::function<ShadowResult(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&)> run;
   bool needs_projector = false;  // the projector layout: the scene needs --slide
   std::function<uint64_t(const TechniqueSpec&, const Scene&, const char*)> map_bytes;
+  // What the technique needs of the scene beyond the projector (throws InputError naming flag).
+  std::function<void(const TechniqueSpec&, const Scene&, const char*)> check_scene;
 };
+
+// A light map must resolve the scene: at least kMinSceneTexels across it (core/light_fit.h). The
+// projector layout is exempt: its one face is aimed and sized by the projector's frustum.
+void check_map_spans_scene(const TechniqueSpec& spec, const MapParams& p, const Scene& scene,
+                           const char* flag) {
+  if (p.layout == FaceLayoutKind::Projector) return;
+  const double texels = scene_span_texels(scene, p.res);
+  if (texels >= kMinSceneTexels) return;
+  throw InputError(flag, fmt::format("{}: the scene spans {:.3g} texels of its map from the light "
+                                     "{:.3g} m away (at least {:g} needed: a smaller map records "
+                                     "next to nothing); raise res or move the light closer",
+                                     spec.text, texels,
+                                     double(glm::length(scene.light.position - scene_bounds(scene).centre())),
+                                     kMinSceneTexels));
+}
 
 struct LayoutName {
   char letter;
@@ -41,7 +62,8 @@ std::vector<Entry> make_registry() {
   rows.push_back({"rt", "Embree ray tracing, the reference; keys: spp=256,hard=0,seed=1",
                   [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
                   run_ray_traced, false,
-                  [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); }});
+                  [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); },
+                  [](const TechniqueSpec&, const Scene&, const char*) {}});
   for (const LayoutName& l : kLayouts)
     for (const MapFilterOps* f : map_filters()) {
       const FaceLayoutKind layout = l.kind;
@@ -59,6 +81,9 @@ std::vector<Entry> make_registry() {
            layout == FaceLayoutKind::Projector,
            [layout, filter](const TechniqueSpec& s, const Scene& scene, const char* flag) {
              return light_map_bytes(parse_map_params(s, layout, filter, flag), scene);
+           },
+           [layout, filter](const TechniqueSpec& s, const Scene& scene, const char* flag) {
+             check_map_spans_scene(s, parse_map_params(s, layout, filter, flag), scene, flag);
            }});
     }
   return rows;
@@ -108,6 +133,7 @@ void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene,
   e.parse(spec, flag);
   if (e.needs_projector && !scene.projector.enabled)
     throw InputError(flag, spec.name + " needs a slide projector light (--slide)");
+  e.check_scene(spec, scene, flag);
 }
 
 uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, const char* flag) {

@@ -71,7 +71,8 @@ ShadowResult run_technique(const TechniqueSpec& spec, const Scene& scene, const 
 void gate_by_projector(const Scene& scene, const GBuffer& gbuffer, ShadowResult& result);
 // Checks a spec without running it (name and every parameter), throwing like run_technique.
 void validate_technique(const TechniqueSpec& spec, const char* flag);
-// Checks what a technique needs of the scene (the projector layout needs a slide projector), so
+// Checks what a technique needs of the scene (the projector layout needs a slide projector; a
+// light map must span the scene with at least kMinSceneTexels texels, core/light_fit.h), so
 // that runs fail before any expensive step rather than after a reference.
 void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene, const char* flag);
 // Memory a technique's maps take at once (bytes): the stored faces, the filter's planes and
