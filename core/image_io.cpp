@@ -25,6 +25,7 @@
 
 #include "core/error.h"
 #include "core/output_file.h"
+#include "core/run_inputs.h"
 #include "core/texture.h"
 
 namespace shadowlab {
@@ -45,6 +46,7 @@ const char* pixel_type_name(Imf::PixelType t) {
 
 // Fails with "cannot open: <strerror>" before OpenEXR gets a chance to word it differently.
 void require_readable(const std::string& path) {
+  note_input(path);
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::fclose(f);

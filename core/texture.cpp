@@ -11,6 +11,7 @@
 #include <stb_image.h>
 
 #include "core/error.h"
+#include "core/run_inputs.h"
 
 namespace shadowlab {
 namespace {
@@ -29,6 +30,7 @@ std::array<float, 256> make_srgb_table() {
 }  // namespace
 
 std::pair<int, int> image_file_size(const std::string& path) {
+  note_input(path);
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   int w = 0, h = 0, comp = 0;
@@ -38,6 +40,7 @@ std::pair<int, int> image_file_size(const std::string& path) {
 }
 
 Texture8 load_texture8(const std::string& path) {
+  note_input(path);
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   int w = 0, h = 0, comp = 0;

@@ -18,6 +18,7 @@
 #include "scenes/obj_loader.h"
 #include "core/parallel.h"
 #include "core/parse_number.h"
+#include "core/temp_cleanup.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/scene_file.h"
 #include "scenes/scene_library.h"
@@ -419,6 +420,9 @@ Scene scene_from_options(const CommonOptions& o) {
 
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body) {
   const std::string prog = std::filesystem::path(argv[0]).filename().string();
+  // Before any thread starts: every thread then leaves SIGINT, SIGTERM and SIGHUP to the one
+  // that removes the run's temporaries (core/temp_cleanup.h).
+  install_interrupt_cleanup();
   // Keep freed large blocks in the heap instead of returning them to the kernel: on the VMs
   // we measure on, first-touch page faults of a 1024×768 GBuffer cost ~200 ms, ten times the
   // pass itself, and would otherwise be paid again by every timing repeat.

@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/run_inputs.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/provenance.h"
 #include "experiments/sweep.h"
 #include "experiments/tune_report.h"
@@ -28,15 +30,16 @@ nlohmann::json merged_provenance(const nlohmann::json& shard0, const std::vector
   return prov;
 }
 
+// Writes into `dir` (the staging folder); `out` is --out, as printed.
 int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::string>& paths,
-          const std::string& out) {
+          const std::string& dir, const std::string& out) {
     if (shards[0].contains("kind") && shards[0]["kind"] == "sweep") {
       SweepResult r = merge_sweep_shards(shards, paths);
       r.provenance = merged_provenance(r.provenance, paths);
       std::printf("%s", sweep_table(r).c_str());
-      write_sweep_csv(out + "/sweep.csv", r);
-      write_sweep_json(out + "/sweep.json", r);
-      write_pareto_svg(out + "/plot.svg", sweep_plot_points(r),
+      write_sweep_csv(dir + "/sweep.csv", r);
+      write_sweep_json(dir + "/sweep.json", r);
+      write_pareto_svg(dir + "/plot.svg", sweep_plot_points(r),
                        "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
                            std::to_string(r.height) + " (merged from " + std::to_string(shards.size()) + " shards)");
       std::printf("merged %zu shards; wrote %s/sweep.csv, sweep.json, plot.svg\n", shards.size(), out.c_str());
@@ -49,7 +52,7 @@ int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::stri
     const nlohmann::json prov = merged_provenance(shards[0].at("provenance"), paths);
     std::printf("%s", tune_table(r, c).c_str());
     std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
-                write_tune_outputs(out, r, c, prov).c_str());
+                write_tune_outputs(dir, r, c, prov).c_str());
     return 0;
 }
 
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
     if (paths.empty()) throw InputError("merge", "give the shard files (tune_shardIofN.json)");
     std::vector<nlohmann::json> shards;
     for (const std::string& p : paths) {
+      note_input(p);
       std::ifstream in(p, std::ios::binary);
       if (!in) throw InputError(p, "cannot open");
       std::stringstream ss;
@@ -73,9 +77,12 @@ int main(int argc, char** argv) {
       if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
       shards.push_back(std::move(j));
     }
-    make_output_dir(out, "--out");
+    // Added to the folder's set: the shards are often in it.
+    RunOutputs outputs(out, "--out", true);
     try {
-      return merge(shards, paths, out);
+      const int code = merge(shards, paths, outputs.dir(), out);
+      outputs.commit();
+      return code;
     } catch (const nlohmann::json::exception& e) {
       // A field of the wrong type in a shard file (the readers check what they convert).
       throw InputError("merge", std::string("malformed shard file: ") + e.what());

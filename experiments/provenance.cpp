@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/run_inputs.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
 
@@ -102,6 +103,7 @@ nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp,
 
 std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
                                             const std::vector<std::string>& overrides) {
+  note_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open (--from)");
   std::stringstream ss;
