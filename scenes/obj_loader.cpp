@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/run_inputs.h"
 #include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
@@ -29,6 +30,7 @@ namespace fs = std::filesystem;
 
 // Reads a whole file; on failure returns false and leaves the reason in *why.
 bool try_read_file(const std::string& path, std::string& out, std::string* why) {
+  note_input(path);
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) {
     *why = std::string("cannot open: ") + std::strerror(errno);
@@ -517,6 +519,7 @@ void check_view_header_line(const std::string& path, size_t line_no, const std::
 }  // namespace
 
 ObjViewHeader read_obj_view_header(const std::string& path) {
+  note_input(path);
   std::ifstream in(path);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   ObjViewHeader h;

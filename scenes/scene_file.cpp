@@ -11,6 +11,7 @@
 
 #include "core/text.h"
 #include "core/error.h"
+#include "core/run_inputs.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -124,6 +125,7 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
     if (notes) notes->push_back(text);
     else std::cerr << "note: " << path << ": " << text << "\n";
   };
+  note_input(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open: " + std::string(std::strerror(errno)));
   std::string text;
