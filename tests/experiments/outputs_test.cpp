@@ -151,6 +151,31 @@ TEST(Outputs, ARerunReplacesThePreviousSetAsAWholeAndKeepsForeignFiles) {
   EXPECT_EQ(read_bytes(d + "/sweep.csv").find("CSM 64"), std::string::npos);
 }
 
+// What a crash between the swap's two renames leaves (no --out, its backup and the new set in
+// a staging folder, both of a process that no longer exists) is put right by the next run into
+// the same --out: the backup becomes --out again, then the run replaces its set as usual.
+TEST(Outputs, ACrashBetweenTheTwoRenamesIsRecoveredByTheNextRun) {
+  const std::string parent = scratch("crash");
+  const std::string d = parent + "/R";
+  const pid_t dead = fork();
+  if (dead == 0) _exit(0);
+  int status = 0;
+  ASSERT_EQ(waitpid(dead, &status, 0), dead);
+  const std::string backup = d + ".old-" + std::to_string(dead);
+  const std::string staging = d + ".staging-" + std::to_string(dead);
+  fs::create_directories(backup);
+  std::ofstream(backup + "/notes.txt") << "previous";
+  fs::create_directories(staging);
+  std::ofstream(staging + "/mask.png") << "new";
+  const ProcResult r = run("render --technique csm:res=64 --width 64 --height 48 --repeats 1 --out " + d);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_bytes(d + "/notes.txt"), "previous");
+  EXPECT_GT(read_bytes(d + "/mask.png").size(), 8u);
+  EXPECT_FALSE(fs::exists(backup));
+  EXPECT_FALSE(fs::exists(staging));
+  EXPECT_EQ(std::distance(fs::directory_iterator(parent), fs::directory_iterator()), 1);
+}
+
 // Starts build/experiments/<program> with args (stdout and stderr to /dev/null).
 pid_t spawn(const std::string& program, const std::vector<std::string>& args) {
   const std::string path = std::string(SHADOWLAB_BINARY_DIR) + "/experiments/" + program;
