@@ -1,6 +1,7 @@
 #include "core/temp_cleanup.h"
 
 #include <pthread.h>
+#include <cstdio>
 #include <signal.h>
 #include <unistd.h>
 
@@ -41,19 +42,27 @@ sigset_t interrupt_signals() {
   int sig = 0;
   while (sigwait(&set, &sig) != 0) {
   }
+  // Held until the process ends: the run's other threads, failing because their folder is gone,
+  // wait in wait_for_interrupt_cleanup instead of exiting before the removal is done.
+  move_mutex().lock();
   {
-    const std::lock_guard<std::mutex> move(move_mutex());
     std::set<std::string> paths;
     {
       const std::lock_guard<std::mutex> lock(set_mutex());
       paths = temporaries();
     }
-    // Twice: a file the run was creating in a folder as it was removed.
-    for (int pass = 0; pass < 2; ++pass)
-      for (const std::string& p : paths) {
-        std::error_code ec;
+    // Each one first renamed away (PATH.removing), so that the run, still working in other
+    // threads, can no longer create files in it; then removed.
+    for (const std::string& p : paths) {
+      const std::string tomb = p + ".removing";
+      std::error_code ec;
+      if (::rename(p.c_str(), tomb.c_str()) == 0) {
+        for (int pass = 0; pass < 3 && std::filesystem::exists(std::filesystem::symlink_status(tomb, ec)); ++pass)
+          std::filesystem::remove_all(tomb, ec);
+      } else {
         std::filesystem::remove_all(p, ec);
       }
+    }
   }
   // The default action (the process ends, its status naming the signal), raised in this thread,
   // the one thread where the signal is no longer blocked.
@@ -79,6 +88,8 @@ void unregister_temporary(const std::string& path) {
 }
 
 std::unique_lock<std::mutex> hold_interrupts() { return std::unique_lock<std::mutex>(move_mutex()); }
+
+void wait_for_interrupt_cleanup() { const std::lock_guard<std::mutex> wait(move_mutex()); }
 
 void install_interrupt_cleanup() {
   static bool installed = false;

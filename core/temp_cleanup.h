@@ -17,6 +17,11 @@ void unregister_temporary(const std::string& path);
 // it never removes a half-moved set (the process still ends by the signal then).
 std::unique_lock<std::mutex> hold_interrupts();
 
+// Returns at once, unless an interrupt's cleanup is under way: then it never returns (the
+// process ends by the signal). The programs call it before they report an error or exit, so
+// an error caused by the cleanup (their staging folder gone) is not reported as the run's.
+void wait_for_interrupt_cleanup();
+
 // Blocks the three signals in the calling thread (and so in every thread it starts later) and
 // starts the thread that waits for them. Call first thing in main; a second call does nothing.
 void install_interrupt_cleanup();

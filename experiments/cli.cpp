@@ -466,8 +466,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
         return 0;
       }
     }
-    return body(argc, argv);
+    const int code = body(argc, argv);
+    wait_for_interrupt_cleanup();
+    return code;
   } catch (const InputError& e) {
+    wait_for_interrupt_cleanup();
     // One prefix: an error whose source is the program itself ("metric") is not named twice.
     if (e.where == prog)
       std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.reason.c_str());
@@ -475,6 +478,7 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
       std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {
+    wait_for_interrupt_cleanup();
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
     return 1;
   }

@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
       check_run_memory(scene, specs, max_memory_bytes(common), masks);
     }
     RunOutputs outputs(common.out, "--out");
+    outputs.check_names({"flicker.csv", "flicker.json", "flicker_worst.png"});
     const FlickerResult r = measure_flicker(scene, c);
     std::printf("scene %s, %dx%d, path %s, %d frames, step %.6g m, reference %d spp, %d threads\n",
                 scene.name.c_str(), scene.camera.width, scene.camera.height,

@@ -79,6 +79,10 @@ int main(int argc, char** argv) {
     }
     // Added to the folder's set: the shards are often in it.
     RunOutputs outputs(out, "--out", true);
+    if (shards[0].contains("kind") && shards[0]["kind"] == "sweep")
+      outputs.check_names({"sweep.csv", "sweep.json", "plot.svg"});
+    else
+      outputs.check_names({"tune.csv", "tune.json", "tune.svg"});
     try {
       const int code = merge(shards, paths, outputs.dir(), out);
       outputs.commit();

@@ -51,8 +51,12 @@ class FolderLock {
 
 bool process_exists(long pid) { return ::kill(pid_t(pid), 0) == 0 || errno == EPERM; }
 
-// The pid after `prefix` in `name` ("S.staging-123" with prefix "S.staging-" → 123), else 0.
-long pid_after(const std::string& name, const std::string& prefix) {
+// The pid after `prefix` in `name` ("S.staging-123" with prefix "S.staging-" → 123, also with
+// the ".removing" an interrupt's cleanup renames it to), else 0.
+long pid_after(std::string name, const std::string& prefix) {
+  const std::string removing = ".removing";
+  if (name.size() > removing.size() && name.compare(name.size() - removing.size(), removing.size(), removing) == 0)
+    name.resize(name.size() - removing.size());
   if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() || name.size() > prefix.size() + 10) return 0;
   long pid = 0;
   for (size_t i = prefix.size(); i < name.size(); ++i) {

@@ -172,6 +172,7 @@ int main(int argc, char** argv) {
     check_run_memory(make_builtin_scene("default"),
                      {parse_spec("cpcss:res=" + std::to_string(res), "--res")}, 0);
     RunOutputs outputs(common.out, "--out");
+    outputs.check_names({"penumbra.csv"});
     std::printf("%-26s %6s %8s %8s %8s | %8s %8s %7s | %8s %8s\n", "case", "R m", "model", "x_a",
                 "x_b", "measured", "model", "error", "pcss", "pcss:mod");
     std::string csv = "case,radius,z_f,z_min,z_max,x_a,x_b,model_full,model_1090,measured_1090,rel_error,pcss_1090,pcss_model_1090,occluder\n";

@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
     common.scene = "bunny";
     const Scene scene = scene_from_options(common);
     RunOutputs outputs(c.out_dir, "--out");
+    outputs.check_names({"masking.csv", "contact_sheet.png"});
     c.out_dir = outputs.dir();
     const MaskingResult r = run_lod_masking(scene, c);
     std::printf("projector_masking: bunny %dx%d, visibility %s, ambient %.2f, %d threads\n",

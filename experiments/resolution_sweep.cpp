@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
         scenes.push_back(scene_from_options(o));
       }
       RunOutputs outputs(common.out, "--out");
+      outputs.check_names({"sweep.csv", "sweep.json"});
       {
         std::vector<std::string> names;
         for (const Scene& scene : scenes) names.push_back(scene.name);
@@ -119,6 +120,12 @@ int main(int argc, char** argv) {
     // Checked before the sweep, which can take minutes. A shard adds its files to the folder
     // the other shards write into.
     RunOutputs outputs(common.out, "--out", c.shards > 1);
+    if (c.shards > 1) {
+      const std::string stem = "sweep_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
+      outputs.check_names({stem + ".csv", stem + ".json"});
+    } else {
+      outputs.check_names({"sweep.csv", "sweep.json", "contact_sheet.png"});
+    }
     const std::string plot_file = plot_given ? outputs.file("--plot", plot, ".svg") : std::string();
     c.out_dir = outputs.dir();
     const SweepResult r = run_resolution_sweep(scene, c);

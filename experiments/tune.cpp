@@ -106,6 +106,12 @@ int main(int argc, char** argv) {
     }
     // A shard adds its files to the folder the other shards write into.
     RunOutputs outputs(common.out, "--out", c.shards > 1);
+    if (c.shards > 1) {
+      const std::string stem = "tune_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
+      outputs.check_names({stem + ".csv", stem + ".json"});
+    } else {
+      outputs.check_names({"tune.csv", "tune.json", "tune.svg"});
+    }
     const TuneResult r = run_tune(scenes, c);
     std::vector<const Scene*> sp;
     for (const Scene& s : scenes) sp.push_back(&s);

@@ -151,6 +151,25 @@ TEST(Outputs, ARerunReplacesThePreviousSetAsAWholeAndKeepsForeignFiles) {
   EXPECT_EQ(read_bytes(d + "/sweep.csv").find("CSM 64"), std::string::npos);
 }
 
+// --from FILE names an input: a repeat whose --out (given, or the recorded one) would replace
+// it is refused before any work.
+TEST(Outputs, ARepeatThatWouldReplaceItsFromFileIsRefused) {
+  const std::string d = scratch("from") + "/R";
+  const std::string render = "render --technique csm:res=64 --width 64 --height 48 --repeats 1 --out " + d;
+  ASSERT_EQ(run(render).exit_code, 0);
+  const auto before = snapshot(d);
+  expect_clear_error("render --from " + d + "/timing.json --out " + d, "timing.json: is an input of this run");
+  expect_clear_error("render --from " + d + "/timing.json", "timing.json: is an input of this run");
+  EXPECT_EQ(snapshot(d), before);
+  const std::string s = scratch("from_sweep") + "/S";
+  ASSERT_EQ(run(kTinySweep + " --resolutions 32 --repeats 1 --out " + s).exit_code, 0);
+  const auto sweep_before = snapshot(s);
+  expect_clear_error("resolution_sweep --from " + s + "/sweep.json", "sweep.json: is an input of this run");
+  EXPECT_EQ(snapshot(s), sweep_before);
+  // Into another folder the repeat runs.
+  EXPECT_EQ(run("render --from " + d + "/timing.json --out " + d + "2").exit_code, 0);
+}
+
 // What a crash between the swap's two renames leaves (no --out, its backup and the new set in
 // a staging folder, both of a process that no longer exists) is put right by the next run into
 // the same --out: the backup becomes --out again, then the run replaces its set as usual.
@@ -228,9 +247,12 @@ TEST(Outputs, AnInterruptedSweepLeavesThePreviousFolderAndNoTemporaries) {
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
   EXPECT_EQ(snapshot(d), before);
-  EXPECT_TRUE(entries_with(parent, ".partial").empty());
-  EXPECT_TRUE(entries_with(parent, ".staging").empty());
-  EXPECT_EQ(std::distance(fs::directory_iterator(parent), fs::directory_iterator()), 1);
+  std::string left;
+  for (const auto& e : fs::recursive_directory_iterator(parent))
+    if (e.path().string().find(d + "/") != 0) left += e.path().string() + " ";
+  EXPECT_TRUE(entries_with(parent, ".partial").empty()) << left;
+  EXPECT_TRUE(entries_with(parent, ".staging").empty()) << left;
+  EXPECT_EQ(std::distance(fs::directory_iterator(parent), fs::directory_iterator()), 1) << left;
 }
 
 // --out that cannot be written: an existing folder no one may create files in (/proc/self, root
