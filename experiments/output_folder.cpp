@@ -6,7 +6,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -154,19 +153,27 @@ RunOutputs::RunOutputs(const std::string& dir, const std::string& flag, bool add
     d = fs::canonical(d, ec);
     if (ec) throw InputError(flag, "'" + dir + "' is a link to nothing: " + ec.message());
   }
-  const fs::file_status st = fs::status(d, ec);
-  const bool exists = fs::exists(st);
-  if (exists && !fs::is_directory(st)) throw InputError(flag, "'" + dir + "' exists and is not a folder");
   if (d == d.root_path() || !d.has_filename())
     throw InputError(flag, "'" + dir + "' is the root folder; give a folder of its own");
-  const fs::path cwd = fs::current_path(ec);
-  if (exists && !ec && is_within(fs::weakly_canonical(cwd, ec), fs::canonical(d, ec)))
-    throw InputError(flag, "'" + dir + "' holds the current folder; the run replaces its folder as a whole, so give a folder of its own");
   const fs::path parent = d.parent_path();
   fs::create_directories(parent, ec);
   if (ec || !fs::is_directory(parent))
     throw InputError(flag, "cannot create folder '" + parent.string() + "': " +
                                (ec ? ec.message() : std::string("not a folder")));
+  // First what an earlier run left (output_folder.h), so the checks below see the folder the
+  // run will replace.
+  try {
+    const FolderLock lock(parent.string());
+    recover(d);
+  } catch (const fs::filesystem_error&) {
+    // What could not be recovered stays for a later run; this one does not depend on it.
+  }
+  const fs::file_status st = fs::status(d, ec);
+  const bool exists = fs::exists(st);
+  if (exists && !fs::is_directory(st)) throw InputError(flag, "'" + dir + "' exists and is not a folder");
+  const fs::path cwd = fs::current_path(ec);
+  if (exists && !ec && is_within(fs::weakly_canonical(cwd, ec), fs::canonical(d, ec)))
+    throw InputError(flag, "'" + dir + "' holds the current folder; the run replaces its folder as a whole, so give a folder of its own");
   if (exists) {
     struct stat ds {}, ps {};
     if (::stat(d.c_str(), &ds) == 0 && ::stat(parent.c_str(), &ps) == 0 && ds.st_dev != ps.st_dev)
@@ -184,12 +191,6 @@ RunOutputs::RunOutputs(const std::string& dir, const std::string& flag, bool add
     throw InputError(flag, "cannot write beside '" + dir + "' (its staging folder): " + os_reason(err));
   }
   register_temporary(stage_);
-  try {
-    const FolderLock lock(parent.string());
-    recover(d);
-  } catch (const fs::filesystem_error&) {
-    // What could not be recovered stays for a later run; this one does not depend on it.
-  }
   set_commit_check([this](const std::string& p) { check_write(p); });
 }
 
