@@ -214,8 +214,9 @@ pid_t spawn(const std::string& program, const std::vector<std::string>& args) {
   return pid;
 }
 
-TEST(Outputs, AnInterruptedSweepLeavesThePreviousFolderAndNoTemporaries) {
-  const std::string parent = scratch("interrupt");
+// A finished sweep into S, then a slow rerun into S ended by `sig` once its first file exists.
+void interrupt_a_rerun(int sig, const std::string& name) {
+  const std::string parent = scratch(name);
   const std::string d = parent + "/S";
   const std::vector<std::string> args = {"--width", "64", "--height", "48", "--techniques", "csm",
                                          "--resolutions", "64", "--spp", "4", "--no-cache", "--out", d};
@@ -243,9 +244,9 @@ TEST(Outputs, AnInterruptedSweepLeavesThePreviousFolderAndNoTemporaries) {
     }
   }
   ASSERT_TRUE(seen);
-  ASSERT_EQ(kill(pid, SIGINT), 0);
+  ASSERT_EQ(kill(pid, sig), 0);
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
   EXPECT_EQ(snapshot(d), before);
   std::string left;
   for (const auto& e : fs::recursive_directory_iterator(parent))
@@ -253,6 +254,14 @@ TEST(Outputs, AnInterruptedSweepLeavesThePreviousFolderAndNoTemporaries) {
   EXPECT_TRUE(entries_with(parent, ".partial").empty()) << left;
   EXPECT_TRUE(entries_with(parent, ".staging").empty()) << left;
   EXPECT_EQ(std::distance(fs::directory_iterator(parent), fs::directory_iterator()), 1) << left;
+}
+
+TEST(Outputs, AnInterruptedSweepLeavesThePreviousFolderAndNoTemporaries) {
+  interrupt_a_rerun(SIGINT, "interrupt");
+}
+
+TEST(Outputs, ATerminatedSweepLeavesThePreviousFolderAndNoTemporaries) {
+  interrupt_a_rerun(SIGTERM, "terminate");
 }
 
 // --out that cannot be written: an existing folder no one may create files in (/proc/self, root
