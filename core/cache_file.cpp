@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/temp_cleanup.h"
 
 namespace shadowlab {
 
@@ -26,6 +27,12 @@ void write_file_atomically(const std::string& dir, const std::string& path,
   static std::atomic<uint64_t> counter{0};
   const std::string tmp = path + ".tmp." + std::to_string(uint64_t(::getpid())) + "." +
                           std::to_string(counter.fetch_add(1));
+  // Removed on an interrupt too (core/temp_cleanup.h): a reader never sees it either way.
+  register_temporary(tmp);
+  struct Unregister {
+    const std::string& path;
+    ~Unregister() { unregister_temporary(path); }
+  } unregister{tmp};
   {
     // errno read right after the step that failed: the OS's reason (a full disk, a missing
     // folder, permissions) goes into the message.

@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/output_file.h"
+#include "core/run_inputs.h"
 #include "core/texture.h"
 
 namespace shadowlab {
@@ -44,6 +45,7 @@ const char* pixel_type_name(Imf::PixelType t) {
   }
 }
 
+  note_input(path);
 // Fails with "cannot open: <strerror>", or for a path that is not a regular file of at most
 // kImageFileLimit, before OpenEXR opens it (which would wait on a FIFO, and word a directory
 // as a file that is not an EXR).

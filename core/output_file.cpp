@@ -7,20 +7,39 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/temp_cleanup.h"
 
 namespace shadowlab {
 
+namespace {
+
+std::function<void(const std::string&)>& commit_check() {
+  static std::function<void(const std::string&)> check;
+  return check;
+}
+
+}  // namespace
+
+void set_commit_check(std::function<void(const std::string& path)> check) {
+  commit_check() = std::move(check);
+}
+
 OutputFile::OutputFile(std::string path)
-    : path_(std::move(path)), temp_(path_ + ".partial-" + std::to_string(::getpid())) {}
+    : path_(std::move(path)), temp_(path_ + ".partial-" + std::to_string(::getpid())) {
+  register_temporary(temp_);
+}
 
 OutputFile::~OutputFile() {
   if (!committed_) std::remove(temp_.c_str());
+  unregister_temporary(temp_);
 }
 
 void OutputFile::commit() {
+  if (commit_check()) commit_check()(path_);
   if (std::rename(temp_.c_str(), path_.c_str()) != 0)
     throw InputError(path_, std::string("cannot write: ") + std::strerror(errno));
   committed_ = true;
+  unregister_temporary(temp_);
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

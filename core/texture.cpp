@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/run_inputs.h"
 
 namespace shadowlab {
 namespace {
@@ -31,6 +32,7 @@ std::array<float, 256> make_srgb_table() {
 }  // namespace
 
 std::pair<int, int> image_file_size(const std::string& path) {
+  note_input(path);
   InputFile checked(path, kTextureFileLimit);
   FilePtr file(::fdopen(checked.fd(), "rb"));
   if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
@@ -42,6 +44,7 @@ std::pair<int, int> image_file_size(const std::string& path) {
 }
 
 Texture8 load_texture8(const std::string& path) {
+  note_input(path);
   const std::vector<unsigned char> bytes = read_input_bytes(path, kTextureFileLimit);
   const int size = int(bytes.size());  // kTextureFileLimit is below INT_MAX
   int w = 0, h = 0, comp = 0;

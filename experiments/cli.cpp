@@ -23,6 +23,7 @@
 #include "core/parallel.h"
 #include "core/parse_number.h"
 #include "core/repeats.h"
+#include "core/temp_cleanup.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/scene_file.h"
 #include "scenes/scene_library.h"
@@ -471,6 +472,9 @@ Scene scene_from_options(const CommonOptions& o) {
 
 int run_main(int argc, char** argv, const std::function<int(int, char**)>& body) {
   const std::string prog = std::filesystem::path(argv[0]).filename().string();
+  // Before any thread starts: every thread then leaves SIGINT, SIGTERM and SIGHUP to the one
+  // that removes the run's temporaries (core/temp_cleanup.h).
+  install_interrupt_cleanup();
   // Keep freed large blocks in the heap instead of returning them to the kernel: on the VMs
   // we measure on, first-touch page faults of a 1024×768 GBuffer cost ~200 ms, ten times the
   // pass itself, and would otherwise be paid again by every timing repeat.
@@ -529,9 +533,11 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
       }
     }
     const int status = body(argc, argv);
+    wait_for_interrupt_cleanup();
     print_notes();
     return status;
   } catch (const InputError& e) {
+    wait_for_interrupt_cleanup();
     take_notes();  // the error is the only line
     // One prefix: an error whose source is the program itself ("metric") is not named twice.
     if (e.where == prog)
@@ -540,6 +546,7 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
       std::fprintf(stderr, "%s: %s\n", prog.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {
+    wait_for_interrupt_cleanup();
     take_notes();
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
     return 1;

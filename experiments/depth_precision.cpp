@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "scenes/scene_library.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
 #include "techniques/depth_quantize.h"
@@ -62,6 +63,9 @@ int main(int argc, char** argv) {
       if (spec.params.count("depth")) throw InputError(cs.flag, "'depth' is what this experiment sweeps");
       validate_technique(spec, cs.flag);
     }
+    // Both subfolders' place checked before the first case runs.
+    RunOutputs outputs(out, "--out");
+    outputs.check_names({"default", "projector"}, true);
     for (const Case& cs : cases) {
       // One row per format: the spec with depth=..., at its own res.
       TechniqueSpec spec = parse_technique_spec(cs.base, cs.flag);
@@ -79,7 +83,8 @@ int main(int argc, char** argv) {
       c.spp = spp;
       c.repeats = repeats;
       c.cache_dir = no_cache ? "" : default_cache_dir();
-      c.out_dir = out + "/" + (std::string(cs.scene) == "default" ? "default" : "projector");
+      const std::string sub = std::string(cs.scene) == "default" ? "default" : "projector";
+      c.out_dir = outputs.subfolder(sub);
       c.progress = stderr_is_terminal();
       Scene scene = make_builtin_scene(cs.scene);
       apply_camera_size(scene, width, height);
@@ -88,15 +93,15 @@ int main(int argc, char** argv) {
         p.slide = make_slide("spot", "--psm");
         set_projector(scene, p, "--psm");
       }
-      make_output_dir(c.out_dir, "--out");
       const SweepResult r = run_resolution_sweep(scene, c);
       std::printf("%s: %s %dx%d, light far %.2f m, reference %d spp, camera pass %.2f ms\n", cs.title,
                   r.scene.c_str(), r.width, r.height, double(scene.light.far), c.spp, r.camera_ms);
       std::printf("%s", sweep_table(r).c_str());
       write_sweep_csv(c.out_dir + "/sweep.csv", r);
       write_sweep_json(c.out_dir + "/sweep.json", r);
-      std::printf("wrote %s/sweep.csv, sweep.json and every mask\n\n", c.out_dir.c_str());
+      std::printf("wrote %s/%s/sweep.csv, sweep.json and every mask\n\n", out.c_str(), sub.c_str());
     }
+    outputs.commit();
     return 0;
   });
 }

@@ -13,6 +13,7 @@
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/flicker_run.h"
 #include "experiments/memory_check.h"
 #include "experiments/provenance.h"
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
                              uint64_t(scene.camera.height) * sizeof(float);
       check_run_memory(scene, specs, max_memory_bytes(common), masks);
     }
-    make_output_dir(common.out, "--out");
+    RunOutputs outputs(common.out, "--out");
+    outputs.check_names({"flicker.csv", "flicker.json", "flicker_worst.png"});
     const FlickerResult r = measure_flicker(scene, c);
     std::printf("scene %s, %dx%d, path %s, %d frames, step %.6g m, reference %d spp, %d threads\n",
                 scene.name.c_str(), scene.camera.width, scene.camera.height,
@@ -104,9 +106,10 @@ int main(int argc, char** argv) {
     j["step_m"] = r.step;
     j["jitter"] = c.jitter;
     j["rows"] = rows;
-    write_text_file(common.out + "/flicker.csv", csv);
-    write_text_file(common.out + "/flicker.json", j.dump(2) + "\n");
-    write_png_grey(common.out + "/flicker_worst.png", flicker_strip(scene, c, r.step, *worst, strip, 2));
+    write_text_file(outputs.dir() + "/flicker.csv", csv);
+    write_text_file(outputs.dir() + "/flicker.json", j.dump(2) + "\n");
+    write_png_grey(outputs.dir() + "/flicker_worst.png", flicker_strip(scene, c, r.step, *worst, strip, 2));
+    outputs.commit();
     std::printf("worst: %s (excess %.5f, frame %d); wrote %s/flicker.csv, flicker.json, flicker_worst.png "
                 "(the technique's frame differences above the reference's, each row labelled)\n",
                 worst->spec.c_str(), worst->excess, worst->worst_frame, common.out.c_str());

@@ -7,9 +7,11 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/run_inputs.h"
 #include "experiments/cli.h"
 #include "core/json_file.h"
 #include "experiments/json_read.h"
+#include "experiments/output_folder.h"
 #include "experiments/provenance.h"
 #include "experiments/sweep.h"
 #include "experiments/tune_report.h"
@@ -29,15 +31,16 @@ nlohmann::json merged_provenance(const nlohmann::json& shard0, const std::vector
   return prov;
 }
 
+// Writes into `dir` (the staging folder); `out` is --out, as printed.
 int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::string>& paths,
-          const std::string& out) {
+          const std::string& dir, const std::string& out) {
     if (shards[0].contains("kind") && shards[0]["kind"] == "sweep") {
       SweepResult r = merge_sweep_shards(shards, paths);
       r.provenance = merged_provenance(r.provenance, paths);
       std::printf("%s", sweep_table(r).c_str());
-      write_sweep_csv(out + "/sweep.csv", r);
-      write_sweep_json(out + "/sweep.json", r);
-      write_pareto_svg(out + "/plot.svg", sweep_plot_points(r),
+      write_sweep_csv(dir + "/sweep.csv", r);
+      write_sweep_json(dir + "/sweep.json", r);
+      write_pareto_svg(dir + "/plot.svg", sweep_plot_points(r),
                        "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
                            std::to_string(r.height) + " (merged from " + std::to_string(shards.size()) + " shards)");
       std::printf("merged %zu shards; wrote %s/sweep.csv, sweep.json, plot.svg\n", shards.size(), out.c_str());
@@ -50,7 +53,7 @@ int merge(const std::vector<nlohmann::json>& shards, const std::vector<std::stri
     const nlohmann::json prov = merged_provenance(json_at(shards[0], "provenance", paths[0]), paths);
     std::printf("%s", tune_table(r, c).c_str());
     std::printf("merged %zu shards; wrote %s/%s\n", shards.size(), out.c_str(),
-                write_tune_outputs(out, r, c, prov).c_str());
+                write_tune_outputs(dir, r, c, prov).c_str());
     return 0;
 }
 
@@ -66,13 +69,21 @@ int main(int argc, char** argv) {
     if (paths.empty()) throw InputError("merge", "give the shard files (tune_shardIofN.json)");
     std::vector<nlohmann::json> shards;
     for (const std::string& p : paths) {
+      note_input(p);
       nlohmann::json j = read_json_file(p, kResultFileLimit);
       if (!j.is_object()) throw InputError(p, "not a JSON object");
       shards.push_back(std::move(j));
     }
-    make_output_dir(out, "--out");
+    // Added to the folder's set: the shards are often in it.
+    RunOutputs outputs(out, "--out", true);
+    if (shards[0].contains("kind") && shards[0]["kind"] == "sweep")
+      outputs.check_names({"sweep.csv", "sweep.json", "plot.svg"});
+    else
+      outputs.check_names({"tune.csv", "tune.json", "tune.svg"});
     try {
-      return merge(shards, paths, out);
+      const int code = merge(shards, paths, outputs.dir(), out);
+      outputs.commit();
+      return code;
     } catch (const nlohmann::json::exception& e) {
       // A field of the wrong type in a shard file (the readers check what they convert).
       throw InputError("merge", "malformed shard file: " + json_error_text(e));

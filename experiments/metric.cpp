@@ -6,6 +6,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "metric/contour_image.h"
 #include "metric/metric_report.h"
 
@@ -41,6 +42,10 @@ int main(int argc, char** argv) {
     const ImageF ref = read_exr_mask(cl.positional[1]);
     ImageU32 texels;
     if (texels_given) texels = read_exr_texels(texels_path);
+    // The one output, checked against the inputs just read before the metric runs.
+    RunOutputs outputs;
+    const std::string contours_file =
+        contours_given ? outputs.file("--contours", contours_path, ".png") : std::string();
     Timings t;
     if (shadow_ms) t.shadowed_ms = *shadow_ms;
     const ImageU32* tex = texels_given ? &texels : nullptr;
@@ -51,7 +56,8 @@ int main(int argc, char** argv) {
     if (repeats)
       std::fprintf(stderr, "compute_metric %dx%d: median %.2f ms over %d runs, %d threads\n",
                    test.width, test.height, ms, *repeats, thread_count());
-    if (contours_given) write_png_rgb(contours_path, contour_comparison(test, ref));
+    if (contours_given) write_png_rgb(contours_file, contour_comparison(test, ref));
+    outputs.commit();
     std::printf("%s\n", json ? metric_report_json(r).c_str()
                                             : metric_report_table(r).c_str());
     return 0;

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/output_file.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/memory_check.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
@@ -170,7 +171,8 @@ int main(int argc, char** argv) {
                                     " samples is over 2^31 rays per profile");
     check_run_memory(make_builtin_scene("default"),
                      {parse_spec("cpcss:res=" + std::to_string(res), "--res")}, 0);
-    make_output_dir(common.out, "--out");
+    RunOutputs outputs(common.out, "--out");
+    outputs.check_names({"penumbra.csv"});
     std::printf("%-26s %6s %8s %8s %8s | %8s %8s %7s | %8s %8s\n", "case", "R m", "model", "x_a",
                 "x_b", "measured", "model", "error", "pcss", "pcss:mod");
     std::string csv = "case,radius,z_f,z_min,z_max,x_a,x_b,model_full,model_1090,measured_1090,rel_error,pcss_1090,pcss_model_1090,occluder\n";
@@ -242,7 +244,8 @@ int main(int argc, char** argv) {
                       c.occluder.c_str());
         csv += line;
       }
-    write_text_file(common.out + "/penumbra.csv", csv);
+    write_text_file(outputs.dir() + "/penumbra.csv", csv);
+    outputs.commit();
     std::printf("widths in metres along each floor line (model: x_a + x_b, then its 10-90 %% transition); "
                 "wrote %s/penumbra.csv\n", common.out.c_str());
     return 0;

@@ -8,6 +8,7 @@
 #include "core/image_io.h"
 #include "core/parallel.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/lod_masking.h"
 #include "raytrace/reference_cache.h"
 #include "techniques/technique_spec.h"
@@ -46,14 +47,17 @@ int main(int argc, char** argv) {
     c.out_dir = common.out;
     common.scene = "bunny";
     const Scene scene = scene_from_options(common);
-    make_output_dir(c.out_dir, "--out");
+    RunOutputs outputs(c.out_dir, "--out");
+    outputs.check_names({"masking.csv", "contact_sheet.png"});
+    c.out_dir = outputs.dir();
     const MaskingResult r = run_lod_masking(scene, c);
     std::printf("projector_masking: bunny %dx%d, visibility %s, ambient %.2f, %d threads\n",
                 r.width, r.height, c.technique.c_str(), double(c.ambient), thread_count());
     std::printf("%s", masking_tables(r).c_str());
     write_masking_csv(c.out_dir + "/masking.csv", r);
     write_png_grey(c.out_dir + "/contact_sheet.png", masking_contact_sheet(r, sheet_cell));
-    std::printf("wrote %s/masking.csv, contact_sheet.png and every shaded image\n", c.out_dir.c_str());
+    outputs.commit();
+    std::printf("wrote %s/masking.csv, contact_sheet.png and every shaded image\n", common.out.c_str());
     return 0;
   });
 }

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/notes.h"
+#include "core/run_inputs.h"
 #include "core/parallel.h"
 #include "core/scene_hash.h"
 #include "core/json_file.h"
@@ -104,6 +105,7 @@ nlohmann::json provenance_json(const std::vector<const Scene*>& scenes, int spp,
 
 std::vector<std::string> arguments_from_run(const std::string& program, const std::string& path,
                                             const std::vector<std::string>& overrides) {
+  note_input(path);
   nlohmann::json j;
   try {
     j = read_json_file(path, kResultFileLimit);

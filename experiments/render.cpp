@@ -11,6 +11,7 @@
 #include "experiments/provenance.h"
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
+#include "experiments/output_folder.h"
 #include "techniques/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
@@ -41,7 +42,8 @@ int main(int argc, char** argv) {
     validate_technique_for_scene(spec, scene, "--technique");
     check_run_memory(scene, {spec}, max_memory_bytes(common));
     const std::string& out = common.out;
-    make_output_dir(out, "--out");
+    RunOutputs outputs(out, "--out");
+    outputs.check_names({"mask.exr", "mask.png", "texel.exr", "timing.json", "shaded.exr", "shaded.png"});
 
     GBuffer g;
     const double camera_ms = median_ms(repeats, [&] { render_gbuffer(scene, g); });
@@ -52,7 +54,8 @@ int main(int argc, char** argv) {
     opt.progress = stderr_is_terminal();
     const ShadowResult r = run_technique(spec, scene, g, opt);
     const ImageF shaded = shade_scene(scene, g, r.mask, shading.ambient);
-    write_result_files(out, "", r, spec.text, camera_ms, provenance_json({&scene}, 0, repeats), &shaded);
+    write_result_files(outputs.dir(), "", r, spec.text, camera_ms, provenance_json({&scene}, 0, repeats), &shaded);
+    outputs.commit();
     std::printf("%s on %s %dx%d: shadow %.3f ms (map %.3f = faces %.3f + render %.3f + filter %.3f;"
                 " lookup %.3f), camera pass %.3f ms; %s\n",
                 spec.text.c_str(), scene.name.c_str(), g.width, g.height, r.shadow_ms(), r.map_ms,

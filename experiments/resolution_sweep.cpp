@@ -10,6 +10,7 @@
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
 #include "scenes/scene_registry.h"
@@ -74,12 +75,18 @@ int main(int argc, char** argv) {
         o.scene = name;
         scenes.push_back(scene_from_options(o));
       }
-      make_output_dir(c.out_dir, "--out");
+      RunOutputs outputs(common.out, "--out");
+      outputs.check_names({"sweep.csv", "sweep.json"});
+      {
+        std::vector<std::string> names;
+        for (const Scene& scene : scenes) names.push_back(scene.name);
+        outputs.check_names(names, true);
+      }
+      c.out_dir = outputs.dir();
       std::vector<SweepResult> results;
       for (const Scene& scene : scenes) {
         SweepConfig sc = c;
-        sc.out_dir = c.out_dir + "/" + scene.name;
-        make_output_dir(sc.out_dir, "--out");
+        sc.out_dir = outputs.subfolder(scene.name);
         results.push_back(run_resolution_sweep(scene, sc));
         const SweepResult& r = results.back();
         std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
@@ -102,27 +109,33 @@ int main(int argc, char** argv) {
       j["scenes"] = nlohmann::json::array();
       for (const SweepResult& r : results) j["scenes"].push_back(sweep_json(r));
       write_text_file(c.out_dir + "/sweep.json", j.dump(2) + "\n");
+      outputs.commit();
       std::printf("wrote %s/sweep.csv, sweep.json (every scene, with a scene column) and per scene "
                   "SCENE/sweep.csv, sweep.json, contact_sheet.png and every mask and shaded image\n",
-                  c.out_dir.c_str());
+                  common.out.c_str());
       return 0;
     }
     const Scene scene = scene_from_options(common);
-    make_output_dir(c.out_dir, "--out");
-    // Checked before the sweep, which can take minutes, and after --out exists (the plot may go there).
-    if (plot_given && plot.empty()) throw InputError("--plot", "needs a file name");
-    if (!plot.empty() && !std::filesystem::is_directory(std::filesystem::absolute(plot).parent_path()))
-      throw InputError("--plot", "'" + plot + "': folder does not exist");
-    if (!plot.empty() && std::filesystem::is_directory(plot))
-      throw InputError("--plot", "'" + plot + "' is a folder; give a file name such as plot.svg");
-    if (c.shards > 1 && !plot.empty()) throw InputError("--plot", "not with --shard: merge draws the plot");
+    if (c.shards > 1 && plot_given) throw InputError("--plot", "not with --shard: merge draws the plot");
+    // Checked before the sweep, which can take minutes. A shard adds its files to the folder
+    // the other shards write into.
+    RunOutputs outputs(common.out, "--out", c.shards > 1);
+    if (c.shards > 1) {
+      const std::string stem = "sweep_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
+      outputs.check_names({stem + ".csv", stem + ".json"});
+    } else {
+      outputs.check_names({"sweep.csv", "sweep.json", "contact_sheet.png"});
+    }
+    const std::string plot_file = plot_given ? outputs.file("--plot", plot, ".svg") : std::string();
+    c.out_dir = outputs.dir();
     const SweepResult r = run_resolution_sweep(scene, c);
     if (c.shards > 1) {
       const std::string stem = c.out_dir + "/sweep_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
       write_sweep_csv(stem + ".csv", r);
       write_sweep_json(stem + ".json", r);
-      std::printf("shard %d/%d: %zu of %zu rows; wrote %s.csv, .json and the rows' masks and shaded images\n",
-                  c.shard, c.shards, r.rows.size(), r.rows_total, stem.c_str());
+      outputs.commit();
+      std::printf("shard %d/%d: %zu of %zu rows; wrote %s/sweep_shard%dof%d.csv, .json and the rows' masks and shaded images\n",
+                  c.shard, c.shards, r.rows.size(), r.rows_total, common.out.c_str(), c.shard, c.shards);
       return 0;
     }
     std::printf("scene %s, %dx%d, light radius %.3f m, reference %d spp, %d threads, camera pass %.2f ms\n",
@@ -134,17 +147,17 @@ int main(int argc, char** argv) {
     std::printf("  reference: %s\n", r.reference.result.notes.c_str());
     write_sweep_csv(c.out_dir + "/sweep.csv", r);
     write_sweep_json(c.out_dir + "/sweep.json", r);
-    std::printf("wrote %s/sweep.csv, sweep.json and every mask and shaded image (EXR + PNG)\n", c.out_dir.c_str());
     if (c.shaded_sheet)
       write_png_rgb(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
     else
       write_png_grey(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
-    if (!plot.empty())
-      write_pareto_svg(plot, sweep_plot_points(r),
+    if (plot_given)
+      write_pareto_svg(plot_file, sweep_plot_points(r),
                        "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
                            std::to_string(r.height) + ", reference " + std::to_string(c.spp) + " spp");
-    std::printf("wrote %s/contact_sheet.png%s%s\n", c.out_dir.c_str(),
-                plot.empty() ? "" : " and plot ", plot.c_str());
+    outputs.commit();
+    std::printf("wrote %s/sweep.csv, sweep.json, contact_sheet.png and every mask and shaded image (EXR + PNG)%s%s\n",
+                common.out.c_str(), plot_given ? " and plot " : "", plot.c_str());
     return 0;
   });
 }

@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "core/parse_number.h"
 #include "experiments/cli.h"
+#include "experiments/output_folder.h"
 #include "experiments/provenance.h"
 #include "experiments/tune_report.h"
 #include "experiments/tuner.h"
@@ -103,7 +104,14 @@ int main(int argc, char** argv) {
       std::printf("references of %zu scene(s) in %s\n", scenes.size(), c.cache_dir.c_str());
       return 0;
     }
-    make_output_dir(common.out, "--out");
+    // A shard adds its files to the folder the other shards write into.
+    RunOutputs outputs(common.out, "--out", c.shards > 1);
+    if (c.shards > 1) {
+      const std::string stem = "tune_shard" + std::to_string(c.shard) + "of" + std::to_string(c.shards);
+      outputs.check_names({stem + ".csv", stem + ".json"});
+    } else {
+      outputs.check_names({"tune.csv", "tune.json", "tune.svg"});
+    }
     const TuneResult r = run_tune(scenes, c);
     std::vector<const Scene*> sp;
     for (const Scene& s : scenes) sp.push_back(&s);
@@ -113,7 +121,9 @@ int main(int argc, char** argv) {
     } else {
       std::printf("%s", tune_table(r, c).c_str());
     }
-    std::printf("wrote %s/%s\n", common.out.c_str(), write_tune_outputs(common.out, r, c, prov).c_str());
+    const std::string written = write_tune_outputs(outputs.dir(), r, c, prov);
+    outputs.commit();
+    std::printf("wrote %s/%s\n", common.out.c_str(), written.c_str());
     return 0;
   });
 }

@@ -19,6 +19,7 @@
 #include "core/input_file.h"
 #include "core/json_check.h"
 #include "core/notes.h"
+#include "core/run_inputs.h"
 #include "core/parse_number.h"
 #include "scenes/scene_library.h"
 #include "core/slide.h"
@@ -118,6 +119,7 @@ class Loader {
     std::string err, warn;
     const std::string ext = ascii_lower(path_.substr(path_.find_last_of('.') + 1));
     bool ok = false;
+    note_input(path_);
     // The JSON is checked (syntax, nesting, keys) before tinygltf, whose conversion of
     // "extras" and "extensions" recurses once per level, parses it.
     if (ext == "glb") {
@@ -132,6 +134,12 @@ class Loader {
     if (!ok || !err.empty())
       fail(err.empty() ? "cannot be read as glTF 2.0" : first_line(err));
     if (!warn.empty()) note(first_line(warn));
+    // The files it refers to are inputs of the run too (core/run_inputs.h).
+    const std::string folder = path_.find('/') == std::string::npos ? "." : path_.substr(0, path_.rfind('/'));
+    for (const tinygltf::Buffer& b : model_.buffers)
+      if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) note_input(folder + "/" + b.uri);
+    for (const tinygltf::Image& im : model_.images)
+      if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0) note_input(folder + "/" + im.uri);
     if (model_.asset.version.rfind("2", 0) != 0)
       fail("asset version '" + model_.asset.version + "' is not glTF 2.x");
   }

@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/notes.h"
+#include "core/run_inputs.h"
 #include "scenes/obj_text_check.h"
 #include "core/rng.h"
 #include "core/texture.h"
@@ -56,6 +57,7 @@ class MtlReader : public tinyobj::MaterialReader {
                   std::string* err) override {
     const std::string path = resolve_path(obj_dir_, name);
     std::string text, why;
+    note_input(path);
     if (!try_read_input_file(path, kMaterialFileLimit, text, &why)) {
       record(InputError(path, why + " (mtllib of " + obj_path_ + ")"));
       return false;
@@ -360,6 +362,7 @@ class MaterialBuilder {
 
 Scene load_obj_scene(const std::string& path, std::vector<std::string>* notes_out) {
   const Notes notes{path, notes_out};
+  note_input(path);
   std::string text = read_input_file(path, kModelFileLimit);
   strip_bom(text);
   const ObjTextSummary summary = check_obj_text(path, text);
@@ -497,6 +500,7 @@ void check_view_header_line(const std::string& path, size_t line_no, const std::
 }  // namespace
 
 ObjViewHeader read_obj_view_header(const std::string& path) {
+  note_input(path);
   check_input_file(path, kModelFileLimit);
   std::ifstream in(path);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/json_file.h"
 #include "core/notes.h"
+#include "core/run_inputs.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_library.h"
@@ -125,6 +126,7 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* notes) 
     if (notes) notes->push_back(text);
     else hold_note("note: " + path + ": " + text);
   };
+  note_input(path);
   const json doc = read_json_file(path, kSceneFileLimit);
   const Reader top(path, doc, "");
   top.only({"base", "models", "camera", "light", "projector", "ground"});
