@@ -45,11 +45,14 @@ const char* pixel_type_name(Imf::PixelType t) {
   }
 }
 
-  note_input(path);
 // Fails with "cannot open: <strerror>", or for a path that is not a regular file of at most
 // kImageFileLimit, before OpenEXR opens it (which would wait on a FIFO, and word a directory
 // as a file that is not an EXR).
-void require_readable(const std::string& path) { check_input_file(path, kImageFileLimit); }
+// The path is noted as an input of the run (core/run_inputs.h).
+void require_readable(const std::string& path) {
+  note_input(path);
+  check_input_file(path, kImageFileLimit);
+}
 
 // Writes one channel `name` of type `type` from a width × height plane of T.
 void add_attributes(Imf::Header& header, const ExrAttributes& attributes) {
