@@ -13,26 +13,14 @@
 #include "core/input_file.h"
 #include "fifo_feeder.h"
 #include "test_paths.h"
+#include "test_scratch.h"
 
 namespace shadowlab {
 namespace input_file_test {
 
-std::string scratch(const std::string& name) {
-  const std::string dir = test::binary_path("tests/scratch/input_file");
-  std::filesystem::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string scratch(const std::string& name) { return test::scratch_path("input_file", name); }
 
-// The InputError of fn(), whole ("path: reason"); empty when none was thrown.
-template <class Fn>
-std::string input_error(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::input_error;
 
 constexpr InputLimit kTiny{4, "a test file"};
 

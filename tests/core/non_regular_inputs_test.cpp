@@ -14,26 +14,14 @@
 #include "core/texture.h"
 #include "fifo_feeder.h"
 #include "test_paths.h"
+#include "test_scratch.h"
 
 namespace shadowlab {
 namespace non_regular_inputs_test {
 
-std::string scratch(const std::string& name) {
-  const std::string dir = test::binary_path("tests/scratch/non_regular_inputs");
-  std::filesystem::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string scratch(const std::string& name) { return test::scratch_path("non_regular_inputs", name); }
 
-// The InputError of fn(), whole ("path: reason"); empty when none was thrown.
-template <class Fn>
-std::string input_error(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::input_error;
 
 // A folder given as an EXR is "not a regular file", not "not an EXR file" (OpenEXR's view of
 // a folder's zero bytes); a FIFO is refused instead of waited on.

@@ -12,22 +12,17 @@
 #include "experiments/run_process.h"
 #include "fifo_feeder.h"
 #include "test_paths.h"
+#include "test_scratch.h"
 
 namespace shadowlab {
 namespace input_files_mains_test {
 
 using test::expect_clear_error;
 
-std::string scratch(const std::string& name) {
-  const std::string dir = test::binary_path("tests/scratch/input_files_mains");
-  std::filesystem::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string scratch(const std::string& name) { return test::scratch_path("input_files_mains", name); }
 
 std::string write_text(const std::string& name, const std::string& text) {
-  const std::string path = scratch(name);
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
+  return test::write_scratch_text("input_files_mains", name, text);
 }
 
 std::string reference_mask() {

@@ -17,34 +17,20 @@
 #include "scenes/obj_loader.h"
 #include "scenes/scene_file.h"
 #include "test_paths.h"
+#include "test_scratch.h"
 
 namespace shadowlab {
 namespace deep_inputs_test {
 
 using nlohmann::json;
 
-std::string scratch(const std::string& name) {
-  const std::string dir = test::binary_path("tests/scratch/deep_inputs");
-  std::filesystem::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string scratch(const std::string& name) { return test::scratch_path("deep_inputs", name); }
 
 std::string write_text(const std::string& name, const std::string& text) {
-  const std::string path = scratch(name);
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
+  return test::write_scratch_text("deep_inputs", name, text);
 }
 
-// The InputError of fn(), whole ("path: reason"); empty when none was thrown.
-template <class Fn>
-std::string input_error(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::input_error;
 
 test::GltfWriter one_triangle() {
   test::GltfWriter w;
