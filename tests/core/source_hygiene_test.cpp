@@ -94,7 +94,7 @@ std::vector<std::string> findings(const std::string& text) {
     const std::string word = text.substr(b, e - b);
     if (ordinals.count(word)) out.push_back(std::to_string(line_of(text, p)) + ": \"" + word + " " + session + "\"");
   }
-  // An issue number: "issue 11", "issues 9", "issue #4".
+  // An issue number: the word, an optional s, blanks, an optional #, a digit.
   const std::string issue = std::string("iss") + "ue";
   for (size_t p = text.find(issue); p != std::string::npos; p = text.find(issue, p + 1)) {
     if (p > 0 && is_word(text[p - 1])) continue;
