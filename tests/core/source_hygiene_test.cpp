@@ -104,8 +104,9 @@ std::vector<std::string> findings(const std::string& text) {
     while (q < text.size() && (text[q] == ' ' || text[q] == '\t')) ++q;
     if (q == gap) continue;
     if (q < text.size() && text[q] == '#') ++q;
-    if (q < text.size() && is_digit(text[q]))
-      out.push_back(std::to_string(line_of(text, p)) + ": \"" + text.substr(p, q + 1 - p) + "\"");
+    size_t end = q;
+    while (end < text.size() && is_digit(text[end])) ++end;
+    if (end > q) out.push_back(std::to_string(line_of(text, p)) + ": \"" + text.substr(p, end - p) + "\"");
   }
   // A date: four digits, '-', two digits, '-', two digits, not inside a longer number.
   for (size_t p = 0; p + 10 <= text.size(); ++p) {
