@@ -4,8 +4,8 @@
 # incremental build. Usage: bash setup.sh [--tests]
 # --tests also installs what only the tests need: snakemake (about 145 Python packages, for the
 # workflow test of workflows/) and libsimde-dev (headers only, for the emulated-SIMD test build
-# that runs the AVX-512 kernels on machines without AVX-512: README, "Testing the AVX-512
-# kernels on any machine"), so the main command's first run stays lean.
+# that runs the AVX-512 kernels on machines without AVX-512: docs/testing.md), so the main
+# command's first run stays lean.
 set -euo pipefail
 cd "$(dirname "$0")"
 

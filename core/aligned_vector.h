@@ -2,8 +2,8 @@
 // std::vector storage on 64-byte (cache-line) boundaries: rows whose length is a multiple of 16
 // floats then start on a line, so they can be written with whole-line non-temporal stores
 // (core/stream_copy.h; a store to part of a line reads the line first, and partial
-// non-temporal lines measured slower than ordinary stores: README "Rasterizer benchmark",
-// thirteenth session). glibc's malloc gives 16-byte alignment only.
+// non-temporal lines measured slower than ordinary stores: docs/performance_history.md).
+// glibc's malloc gives 16-byte alignment only.
 #include <cstddef>
 #include <new>
 #include <vector>

@@ -3,7 +3,7 @@
 // interpolated over its visible triangle at its position. The camera pass (raster/
 // gbuffer_pass.h) does not store them: no technique, reference or metric reads them, only the
 // pictures for people (techniques/scene_shading.h, techniques/projector_shading.h), and
-// writing them for every pixel cost about a fifth of the pass (README "Rasterizer benchmark").
+// writing them for every pixel cost about a fifth of the pass (docs/performance_history.md).
 #include <cstddef>
 
 #include "core/gbuffer.h"

@@ -11,7 +11,7 @@
 
 namespace shadowlab {
 
-// Text attributes written into an EXR header (name → value; provenance, README "Provenance"),
+// Text attributes written into an EXR header (name → value; provenance, docs/provenance.md),
 // readable with `exrheader`.
 using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 

@@ -18,7 +18,7 @@ inline void prefetch_bytes(const void* p, size_t n) {
 // we measure on, a load that misses both the caches and the TLB takes ~250 ns), where the
 // prefetch walks it ahead. (On the baseline x86-64 target, which has no PREFETCHW, GCC emits
 // prefetchnta for this write hint of locality 0.) One line per page is brought in, ~1.5 % of
-// what the stores write. README "Technique benchmark", eighteenth session.
+// what the stores write. docs/performance_history.md.
 inline void prefetch_pages(void* p, size_t n) {
   char* const c = static_cast<char*>(p);
   for (size_t o = 0; o < n; o += 4096) __builtin_prefetch(c + o, 1, 0);

@@ -1,5 +1,5 @@
 #pragma once
-// Content hash of a scene, for provenance (README "Provenance"): two runs with the same hash
+// Content hash of a scene, for provenance (docs/provenance.md): two runs with the same hash
 // rendered the same geometry, materials, textures, light, projector and camera.
 #include <string>
 

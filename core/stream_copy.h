@@ -2,7 +2,7 @@
 // Copies of float rows into memory that is written far more than the caches hold (a filtered
 // moment map: 16 bytes per texel for MSM, ~35 MB on the default scene's cube): the whole 64-byte
 // lines of the destination are written with non-temporal stores, which do not first read the
-// line from memory as an ordinary store does (README "The light-map pipeline" gives the
+// line from memory as an ordinary store does (docs/techniques/pipeline.md gives the
 // measurement). The values are a copy's: every path gives the same bits as the scalar one
 // (tests/core/stream_copy_test.cpp). Non-temporal stores are weakly ordered: a thread calls
 // stream_fence() after its copies and before it signals that its work is done (a fence per

@@ -488,8 +488,8 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
     check_environment();
     const bool repeatable =
         std::find(std::begin(kRepeatable), std::end(kRepeatable), prog) != std::end(kRepeatable);
-    // --from FILE and --from=FILE alike (the README: --flag=value works for every flag); the
-    // words beside it (--out, --threads) in either form too.
+    // --from FILE and --from=FILE alike (--flag=value works for every flag:
+    // docs/programs/common_flags.md); the words beside it (--out, --threads) in either form too.
     std::vector<std::string> words;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];

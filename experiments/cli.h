@@ -65,8 +65,8 @@ void add_text(CommandLine& cl, const std::string& flag, const std::string& place
               const std::string& help, std::string& value, bool* given = nullptr);
 void add_switch(CommandLine& cl, const std::string& flag, const std::string& help, bool& value);
 
-// The flags every experiment takes (README "Experiments"), bound to one struct. Unset optionals
-// keep the scene's own values.
+// The flags every experiment takes (docs/programs/common_flags.md), bound to one struct. Unset
+// optionals keep the scene's own values.
 struct CommonOptions {
   std::string scene = "default";
   bool scene_given = false;          // --scene appeared (even naming the default)

@@ -1,6 +1,6 @@
 // flicker: temporal stability of every technique along a path (the light moved by sub-texel
 // steps, or the camera panned), against the ray-traced reference at the same GBuffer points
-// (experiments/flicker_run.h; README "Temporal stability"). Table on stdout; flicker.csv,
+// (experiments/flicker_run.h; docs/programs/flicker.md). Table on stdout; flicker.csv,
 // flicker.json and flicker_worst.png (the worst row's frame differences above the
 // reference's) in --out.
 #include <cstdio>

@@ -1,5 +1,5 @@
 #pragma once
-// Temporal stability (README "Temporal stability"): a scene is rendered for N frames along a
+// Temporal stability (docs/programs/flicker.md): a scene is rendered for N frames along a
 // path (the light moved by sub-texel steps along a line or a closed circle, or the camera
 // panned by sub-pixel steps), every technique and the ray-traced reference at the same GBuffer
 // points of each frame, and each technique's frame-to-frame change is compared with the

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Issue 16's jobs, shadowlab and Mesa's llvmpipe interleaved in one run (README "Rasterizer
-# benchmark"): ROUNDS rounds of every job, each printing "who job median_ms".
+# The rasterizer's jobs, shadowlab and Mesa's llvmpipe interleaved in one run
+# (docs/performance_history.md): ROUNDS rounds of every job, each printing "who job median_ms".
 #   bash experiments/peer_rounds.sh PATH/TO/gl_bench [ROUNDS]
 # gl_bench is the peer of ../shared/peers/llvmpipe/ (built outside the project tree, as its
 # README says). Run from the repository root after the build.

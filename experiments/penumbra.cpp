@@ -1,5 +1,5 @@
 // penumbra: the penumbra-width model (techniques/penumbra_model.h) against penumbrae measured
-// on the Embree soft reference (README "The penumbra-width model"). Each case is a line of
+// on the Embree soft reference (docs/techniques/pcss.md). Each case is a line of
 // floor points crossing one shadow edge, from the shadow out into the light; the reference and
 // PCSS (classic and estimate=model) are evaluated at exactly those points (a one-row GBuffer),
 // and the 10 %–90 % transition of each profile (measured_transition) is compared with the

@@ -48,7 +48,7 @@ const std::string& run_program() { return program_storage(); }
 const std::vector<std::string>& run_arguments() { return argument_storage(); }
 
 const char* build_commit() { return SHADOWLAB_COMMIT; }
-// Bumped with each wave of issues (README "Provenance").
+// Bumped with each wave of issues (docs/provenance.md).
 const char* shadowlab_version() { return "0.2.0"; }
 
 std::string cpu_model() {

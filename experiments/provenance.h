@@ -1,5 +1,5 @@
 #pragma once
-// Provenance of every output (README "Provenance"): what ran, on what, from which source. The
+// Provenance of every output (docs/provenance.md): what ran, on what, from which source. The
 // mains record their command line through run_main (experiments/cli.h); the writers put
 // provenance_json into every JSON and CSV they write and, as string attributes, into EXR headers.
 #include <string>

@@ -2,7 +2,7 @@
 // (all 6 faces), the camera GBuffer pass and the cube-map lookup pass (pcf=1) — and prints the
 // median, min and max over the repeats with the triangle and thread counts. With --scaling it
 // times each job at 1 thread and at --threads N instead, the two alternating repeat by repeat
-// (README "Rasterizer benchmark": the machines drift 10-20 % within minutes, so a ratio of two
+// (docs/performance_history.md: the machines drift 10-20 % within minutes, so a ratio of two
 // separate runs' medians measured the drift as much as the scaling), and prints the median of
 // the per-repeat ratios.
 #include <algorithm>

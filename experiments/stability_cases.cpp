@@ -117,7 +117,7 @@ std::vector<StabilityRow> run_stability_cases() {
 
   // 1b. EVSM exponents from 5 to 44 (the largest whose e^(2c) fits float is 44.36; larger ones
   //     are rejected when parsed), 2 and 4 moments. The stored moments must stay finite up to
-  //     the edge. Measured (2026-11-28): mismatch 0.13-0.33 %, leak 0.025-0.057 in every row,
+  //     the edge. Measured: mismatch 0.13-0.33 %, leak 0.025-0.057 in every row,
   //     c = 5 included (this scene's occluder gaps are large against the warp's spread); bounds
   //     about 3x that.
   {
@@ -134,7 +134,7 @@ std::vector<StabilityRow> run_stability_cases() {
   // 1c. MSM moment bias α from 0 to 1e-2 (Hamburger and Hausdorff with fp32 moments, and
   //     Hamburger through the 16-bit quantization), on the default range and on a 1e3 m range
   //     (depths crowd near 0, so a footprint's spread is small against the stored moments'
-  //     rounding). Measured (2026-11-28): α = 0 loses 0.32-0.34 % of the lit pixels (acne where
+  //     rounding). Measured: α = 0 loses 0.32-0.34 % of the lit pixels (acne where
   //     rounding leaves the Hankel matrix singular or indefinite) against 0.05-0.07 % at
   //     3e-7 <= α <= 1e-3; α = 1e-2 leaks 0.074-0.088 with Hamburger against 0.028-0.029 at
   //     3e-6 (Hausdorff, clipped to [0, 1], stays at 0.033); the 16-bit store leaks 0.08-0.12 on
@@ -247,7 +247,7 @@ std::vector<StabilityRow> run_stability_cases() {
     }
     // PCSS (rpdb by default) with the light 1 mm above the floor or grazing it: the search and
     // kernel radii are clamped to half a face; the plane finds no blocker, so the floor stays
-    // lit (measured 2026-11-28: 0.01-0.02 % lost at 1 mm, 0 grazing).
+    // lit (measured: 0.01-0.02 % lost at 1 mm, 0 grazing).
     for (const char* t : {"cpcss", "tpcss"})
       rows.push_back(measure(p, name, setting, std::string(t) + ":res=1024,light_size=0.1",
                              Check::LitLoss, 0.001, "lit pixels lost <= 0.1%"));
@@ -260,7 +260,7 @@ std::vector<StabilityRow> run_stability_cases() {
   //     light (light radius 0.1 m from the spec, the reference hard). The penumbra shrinks to
   //     nothing at the contact, so the shadow stays attached; the 50 % contour keeps the hard
   //     edge's place (for a flat blocker parallel to the floor PCSS's penumbra is symmetric
-  //     about it). Measured (2026-11-28): mismatch 0.09-0.10 %, leak 0.051-0.053.
+  //     about it). Measured: mismatch 0.09-0.10 %, leak 0.051-0.053.
   {
     Scene s = sized(make_builtin_scene("plane"));
     add_box(new_mesh(s, "box", vec3(0.5f)),
@@ -281,7 +281,7 @@ std::vector<StabilityRow> run_stability_cases() {
   //     under it. Without tess the triangle's image is the chord triangle between three rim
   //     points and 1/r is interpolated linearly across it, far from the true 1/r ∝ (1 − ρ²)/
   //     (1 + ρ²): its stored distances come out far too large and the floor leaks. tess=N
-  //     splits it until every image edge is at most N texels. Measured (2026-11-28): without
+  //     splits it until every image edge is at most N texels. Measured: without
   //     tess mismatch 68 %, leak 1.0 (the floor entirely lit); tess=64 and tess=8 mismatch 0,
   //     leak 0 (so does csm).
   {
@@ -310,7 +310,7 @@ std::vector<StabilityRow> run_stability_cases() {
   //    ~1.4 cm wide). The pole's shadow is the only shadow in view (1.7 % of the image), so a
   //    bound on the mismatch alone cannot see the pole go missing; every row also bounds the
   //    leak, the mean visibility inside the reference's shadow, which is 1 without the pole.
-  //    Measured leaks (2026-11-28): csm 0.00, tsm 0.20, cvsm 0.33, cesm 0.34, tvsm 0.57,
+  //    Measured leaks: csm 0.00, tsm 0.20, cvsm 0.33, cesm 0.34, tvsm 0.57,
   //    tesm 0.58 (filters thin a one-texel occluder; tetrahedral texels are coarser there).
   {
     Scene s = sized(make_builtin_scene("plane"));

@@ -173,7 +173,7 @@ std::string sweep_table(const SweepResult& r) {
         row.result.from_cache ? "cached" : fmt::format("{:.2f}", row.result.shadow_ms());
     const std::string rp = is_ref ? "-" : fmt::format("{:.3f}", m.performance);
     const std::string total = fmt::format("{:.3f}", m.total);
-    // Work counts (README "Work counts"): texels rendered, mean taps per looked-up pixel, map
+    // Work counts (docs/metric.md): texels rendered, mean taps per looked-up pixel, map
     // bytes touched (written + read), all per repeat; "-" for the ray tracer.
     const WorkCounts& wk = row.result.work;
     std::string tex = "-", taps = "-", mb = "-";
@@ -363,7 +363,7 @@ SweepRow row_from_json(const nlohmann::json& j, const std::string& where) {
            {"ssim", &MetricReport::ssim}, {"rmse", &MetricReport::rmse}, {"psnr", &MetricReport::psnr},
            {"total", &MetricReport::total}})
     m.*v = json_number(j, k, where);
-  // FLIP since 2026-12-01: files written before have neither key (NaN then: "not measured").
+  // Files written before FLIP joined the metric have neither key (NaN then: "not measured").
   m.flip_mean = j.contains("flip_mean") ? json_number(j, "flip_mean", where) : std::nan("");
   row.flip_shaded = j.contains("flip_shaded") ? json_number(j, "flip_shaded", where) : std::nan("");
   m.has_performance = j.contains("performance");

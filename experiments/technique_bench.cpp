@@ -2,7 +2,7 @@
 // list of techniques on one scene, interleaved (every repeat runs every technique once, so
 // machine drift hits all of them alike; each run's own 3 repeats give its warm median), with the
 // medians, the work counts and the
-// even-engineering targets of the README's performance section as ratios of those medians.
+// even-engineering targets of docs/performance.md as ratios of those medians.
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
                   double(t.work.texels_rendered) * 1e-6, t.work.taps_per_pixel(),
                   double(t.work.bytes_touched()) * 1e-6);
     }
-    // The targets (README "Performance"), for the specs that are present.
+    // The targets (docs/performance.md), for the specs that are present.
     auto key = [&](const std::string& name, const std::string& extra) {
       return name + ":" + (extra.empty() ? "" : extra + ",") + "res=" + std::to_string(res);
     };

@@ -77,7 +77,7 @@ TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   e.height = int(json_uint(j, "height", 1 << 20, where));
   e.spp = int(json_uint(j, "spp", 1 << 30, where));
   e.objective = json_number(j, "objective", where);
-  // flip_mean since 2026-12-01: a file written before has none (NaN: not measured).
+  // A file written before FLIP joined the metric has no flip_mean (NaN: not measured).
   for (const auto& [k, m] : report_fields())
     e.report.*m = std::string(k) == "flip_mean" && !j.contains(k) ? std::nan("")
                                                                   : json_number(j, k, where);

@@ -1,5 +1,5 @@
 #pragma once
-// What the tuner reports (README "Tuning"): per budget the best configuration overall and per
+// What the tuner reports (docs/programs/tune.md): per budget the best configuration overall and per
 // technique, the Pareto fronts of objective against time and against bytes, every evaluation as
 // CSV and JSON, and the plot with the chosen points marked. Also reads the JSON back, which is
 // how shards are merged: the merged report is computed by the same functions from the same

@@ -1,7 +1,7 @@
 #pragma once
 // The tuner behind experiments/tune (experiments/tune.cpp): evaluates points of parameter spaces (experiments/
 // param_space.h) against the ray-traced reference and finds, per time or bytes budget, the best
-// configuration overall and per technique (README "Tuning").
+// configuration overall and per technique (docs/programs/tune.md).
 //
 // Evaluations are ordered: point-major over the spaces in the order given, then scene; each has
 // an index in that list, which --shard i/N uses (index mod N == i). Strategy `grid` evaluates

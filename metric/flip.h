@@ -2,7 +2,7 @@
 // LDR-FLIP (Andersson, Nilsson, Akenine-Möller, Oskarsson, Åström and Fairchild, "FLIP: A
 // Difference Evaluator for Alternating Images", HPG 2020): the perceptual error of a test image
 // against a reference as a person sees them on a display, per pixel in [0, 1]; an extra column
-// of the metric (README "FLIP"). Written from the paper's equations; the constants are the
+// of the metric (docs/metric.md). Written from the paper's equations; the constants are the
 // paper's as published with its reference implementation (NVlabs/flip, BSD-3).
 //
 // Colour pipeline: linear RGB → XYZ (D65) → YCxCz; each channel filtered by its spatial contrast

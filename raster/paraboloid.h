@@ -4,7 +4,7 @@
 // point (d̂·right, d̂·up) / (1 + z), the unit disk holding the hemisphere z >= 0. It is not a
 // matrix: it is applied to the vertices and the rasterizer interpolates linearly between
 // them, so a straight edge stays straight in the image where the true image of the edge is a
-// curve (the layout's known error, README "Dual-paraboloid layout").
+// curve (the layout's known error, docs/techniques/layouts.md).
 //
 // Clip coordinates: w = |p − centre| (so 1/w, which the depth test keeps, is the reciprocal
 // radial distance), x, y = the image point mapped to NDC by the face's extent, times w; and

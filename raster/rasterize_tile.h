@@ -254,17 +254,17 @@ template <class Shader>
 void rasterize_frame(const BinnedFrame& frame, DepthTarget& depth, Shader& shader,
                      bool clear = true) {
   const size_t tiles = size_t(frame.tiles_x) * size_t(frame.tiles_y);
-  // Depth-only shaders on a cleared target without ids draw each tile into a tile-local buffer
-  // (16 KB, in L1) and copy it into the target at the end with non-temporal stores
+  // Depth-only shaders on a cleared target without ids draw each tile into a tile-local buffer (16
+  // KB, in L1) and copy it into the target at the end with non-temporal stores
   // (core/stream_copy.h): the target's lines are then written without first being read, where
-  // clearing them in place read every line of the target from memory (README "Rasterizer
-  // benchmark", thirteenth session). The same operations on the same values: the same bits.
-  // Only where every tile row starts on a 64-byte line (a 64-byte aligned target, rows a multiple
-  // of 16 floats): partial lines written non-temporally measured slower than clearing in place.
-  // And only for targets of kStreamedTargetBytes or more: non-temporal stores leave the target
-  // in memory, not in the caches, and a smaller target is read back soon (the lookup after a
-  // cube of 1024² faces, 24 MB, took 13 % longer while the render gained 9 %; at 2048², 96 MB,
-  // nothing of it stays cached either way).
+  // clearing them in place read every line of the target from memory (docs/performance_history.md).
+  // The same operations on the same values: the same bits. Only where every tile row starts on a
+  // 64-byte line (a 64-byte aligned target, rows a multiple of 16 floats): partial lines written
+  // non-temporally measured slower than clearing in place. And only for targets of
+  // kStreamedTargetBytes or more: non-temporal stores leave the target in memory, not in the
+  // caches, and a smaller target is read back soon (the lookup after a cube of 1024² faces, 24 MB,
+  // took 13 % longer while the render gained 9 %; at 2048², 96 MB, nothing of it stays cached
+  // either way).
   constexpr bool kDepthOnly = !Shader::kNeedsAttributes && kKeepsAll<Shader>;
   const bool local = kDepthOnly && clear && !depth.with_ids && depth.width % 16 == 0 &&
                      reinterpret_cast<uintptr_t>(depth.inv_w.data()) % 64 == 0 &&

@@ -1,7 +1,7 @@
 #pragma once
 // The JSON scene file (`--scene my.json`): models with transforms, camera, light or slide
 // projector, and a ground plane, optionally over a built-in scene. Schema (every key optional
-// unless said; lengths in metres, angles in degrees; README "Scene files"):
+// unless said; lengths in metres, angles in degrees; docs/scenes.md):
 //
 //   {
 //     "base": "default",                  a built-in scene to start from (its meshes, camera

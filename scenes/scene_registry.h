@@ -25,7 +25,7 @@ std::vector<std::string> builtin_scene_names();
 // (known: default, plane, ...)").
 Scene make_builtin_scene(const std::string& name);
 
-// "name: description" lines, one per scene (for --help and the README).
+// "name: description" lines, one per scene (for --help and docs/programs/common_flags.md).
 std::string builtin_scenes_text();
 
 // Scene suites (--suite NAME): "hard" = grazing, contact, depth_range, cluttered (the cases

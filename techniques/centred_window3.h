@@ -9,7 +9,7 @@
 // is below ~1e-7 of E[v²] (hence the separable filters' double sums for the other widths:
 // techniques/moment_filter.h). Squaring δ/3 rather than δ keeps the sum of 8 squares finite for
 // EVSM's largest exponent: |δ| < e^c, and 8·e^(2c)/9 < FLT_MAX for c ≤ 44.36. The bounds and
-// their measurement: README "Techniques", VSM, Precision.
+// their measurement: docs/techniques/vsm.md, Precision.
 namespace shadowlab {
 
 // Which kernel computes a row: each gives the scalar loop's bits (the same float operations in

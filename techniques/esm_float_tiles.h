@@ -12,8 +12,8 @@
 // the sums and ln run 8 or 16 lanes per instruction where the double path runs 4 or 8. A tile
 // whose range is wider (a silhouette against a far background at a large c) keeps the double
 // path. Both are within float precision of the exact value; the float path's bound is
-// (X + 2k + 4)·2^-24 + 2.3e-7 + half the stored float's ulp (README
-// "Techniques", ESM, and tests/techniques/esm_float_tiles_test.cpp).
+// (X + 2k + 4)·2^-24 + 2.3e-7 + half the stored float's ulp (docs/techniques/esm.md
+// and tests/techniques/esm_float_tiles_test.cpp).
 #include <cstddef>
 
 namespace shadowlab {

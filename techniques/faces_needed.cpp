@@ -257,7 +257,7 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
     // A sparse sample first (8 pixels of every 512): when it already needs every face, so does
     // the whole image, and the pass ends after 1/64 of the work. Otherwise the blocks decide
     // (with block bounds), else every pixel is walked below. Every way the answer is the exact
-    // set of faces (README "The light-map pipeline": stage 2).
+    // set of faces (docs/techniques/pipeline.md: stage 2).
     uint32_t f = 0;
     size_t unused = 0;
     for (size_t b = 0; b < g.pixel_count() && f != all; b += 512)

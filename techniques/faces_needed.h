@@ -2,7 +2,7 @@
 // Stage 2 of the light-map pipeline (techniques/light_map.h): which faces some pixel's lookup
 // touches, so that only those are rendered. The answer is the exact set of faces of the
 // covered, light-facing pixels' lookups (and, for cross-face PCF, of their taps); every path
-// below gives that same set (README "The light-map pipeline").
+// below gives that same set (docs/techniques/pipeline.md).
 #include <cstdint>
 #include <vector>
 

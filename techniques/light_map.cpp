@@ -81,7 +81,7 @@ const MapFilterOps& map_filter_ops(MapFilter id) {
 
 namespace {
 
-// Work of one repeat (README "Work counts"): texels a lookup reads and the bytes per texel.
+// Work of one repeat (docs/metric.md): texels a lookup reads and the bytes per texel.
 void count_work(const MapParams& p, const LightMap& map, size_t looked_up, WorkCounts& w) {
   uint64_t filtered_texels = 0;  // texels of the rendered faces the filter wrote
   for (size_t f = 0; f < map.layout.faces.size(); ++f)

@@ -24,7 +24,7 @@ namespace shadowlab {
 
 // A built map: the layout, the rendered distances and, for filtering techniques, the filtered
 // values per face, interleaved per texel in plane a so that one load fetches all of a tap's
-// values (README "Technique benchmark"): VSM: mean, variance (or m1, m2 in fp32 mode), texel i's
+// values (docs/performance_history.md): VSM: mean, variance (or m1, m2 in fp32 mode), texel i's
 // at a[2i], a[2i + 1], and the max depth in its own plane when maxdepth_eps > 0; ESM: the
 // log-space occluder term c·z, a[i]; EVSM: the positive warp's mean and variance, then with 4
 // moments the negative warp's, a[S·i + 0..S−1] with S = 2 or 4; MSM: E[d]…E[d⁴], a[4i + 0..3].

@@ -1,9 +1,10 @@
 #pragma once
 // A filter of the light-map pipeline (techniques/light_map.h): what a technique adds to a layout.
-// Each filter lives in one file (depth_compare.cpp, variance_map.cpp, exponential_map.cpp) that
-// defines its row below: its own keys, its store + blur stage and its lookup. The registry
-// (techniques/technique.cpp) combines every layout with every row of map_filters(), so a new
-// filter is one file, one field in MapParams for its keys, and one line in map_filters().
+// Each filter's row below is defined in its own file (depth_compare.cpp, variance_map.cpp,
+// exponential_map.cpp, exponential_variance_map.cpp, moment_shadow_map.cpp, pcss.cpp): its own
+// keys, its store + blur stage and its lookup; the shared row kernels live in moment_filter.h and
+// the vector lookups in map_lookup_simd.h. The registry (techniques/technique.cpp) combines every
+// layout with every row of map_filters().
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,7 +33,7 @@ struct MapFilterOps {
   // Stage 6: every GBuffer pixel's visibility (and texel index when texels is given).
   void (*lookup)(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
                  ImageF& mask, ImageU32* texels);
-  // Work counts (README "Work counts"): map texels one lookup reads, the bytes per such tap,
+  // Work counts (docs/metric.md): map texels one lookup reads, the bytes per such tap,
   // and the float planes the filter stores per texel.
   uint64_t (*taps_per_lookup)(const MapParams& p);
   uint64_t (*tap_bytes)(const MapParams& p);

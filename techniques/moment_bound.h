@@ -9,7 +9,7 @@
 //      16-bit storage) or a single depth in the footprint makes it singular.
 //   2. Solve B·c = (1, z, z²) by B = L·D·Lᵀ (Cholesky without square roots), carried out
 //      scaled by k = d22²·d33 (D's pivots): k·c needs no division, and step 3 only needs c
-//      up to scale (README "Technique benchmark": five of the seven divisions gone).
+//      up to scale (docs/performance_history.md: five of the seven divisions gone).
 //   3. The roots z2 <= z3 of c1 + c2·x + c3·x² are, with z, the atoms of the distribution with
 //      moments b that has an atom at z (its canonical representation).
 //   4. Hamburger (support ℝ): G = 0 when z <= z2; the weight of z2 when z2 < z <= z3; one minus
@@ -222,7 +222,7 @@ SL_MSM_AVX2 inline void msm_intensity4n(const __m256d (*m)[4], const __m256d* z,
 // instruction as in AVX2 on the machines we measure (AMD EPYC: ~1.15 ns either way), so 8 lanes
 // halve the divisions' share of the MSM lookup. The chain of divisions and the square root is
 // serial within a group; N > 1 issues independent groups' steps side by side so that one group's
-// division runs while another's waits (the lookup takes 4 groups: README "Technique benchmark").
+// division runs while another's waits (the lookup takes 4 groups: docs/performance_history.md).
 template <int N>
 SL_MSM_AVX512 inline void msm_intensity8n(const __m512d (*m)[4], const __m512d* z, double alpha,
                                           bool hausdorff, __m512d* out) {

@@ -55,7 +55,7 @@ void filter_max(const float* dist, int w, int h, int k, std::vector<float>& out,
 // are core/exp_log.h's exp_wide and log_wide (float precision, double range, vectorized, the
 // same bits on any x86-64): the stored value is a float, and the error they add, at most
 // c·2^-24 + 5e-7, is about what the float's own rounding and the lookup's float exponent add
-// (README "Techniques", ESM). For k <= 9, every tile of 32 × 32 texels whose windows' range
+// (docs/techniques/esm.md). For k <= 9, every tile of 32 × 32 texels whose windows' range
 // allows it (c·(hi − lo)/2 <= ~80) is instead filtered in float around its own middle
 // distance (techniques/esm_float_tiles.h: twice the lanes per instruction, within
 // (X + 2k + 4)·2^-24 + 2.3e-7 + half an ulp, X <= 80 the tile's largest exponent); the rest as
@@ -72,7 +72,7 @@ void filter_esm_log(const float* dist, int w, int h, int k, double c, std::vecto
 // finite in float for c <= 44.36. The warp
 // itself is made in float (exp_f of float(sign·c)·((d + d) − 1)): its rounding, ~4e-6 of v at
 // c = 44, is what a change of d by 1–2 of its own float ulps does, and v and v² are then
-// summed in double, where the variance's cancellation needs it (README "Techniques", EVSM).
+// summed in double, where the variance's cancellation needs it (docs/techniques/evsm.md).
 void filter_warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                            std::vector<float>& mean, std::vector<float>& variance,
                            const FaceTiles* tiles = nullptr);
@@ -85,12 +85,12 @@ void filter_warped_moments_interleaved(const float* dist, int w, int h, int k, d
                                        const FaceTiles* tiles = nullptr);
 
 // MSM's power moments (Peters & Klein 2015): d, d², d³, d⁴ per texel (d = the distance with
-// "nothing seen" as 1), box-filtered in float and stored as floats in out[0..3]. Why float is
-// exact enough here (issue 11's rule: float where the evidence shows it), README "Techniques",
-// MSM: the moments of d ∈ [0, 1] are positive, so their sums have no cancellation (relative
-// error below (2k + 2)·2^-24, measured ~1e-7 at k = 3); the masks move by about twice what a
-// random change of every distance by one float ulp moves them, the stability rows at α ≥ 3e-6
-// not at all, and the scores of Table I by at most one unit of their last digit.
+// "nothing seen" as 1), box-filtered in float and stored as floats in out[0..3]. Why float is exact
+// enough here (float where the evidence shows it is; docs/techniques/msm.md): the moments of d ∈
+// [0, 1] are positive, so their sums have no cancellation (relative error below (2k + 2)·2^-24,
+// measured ~1e-7 at k = 3); the masks move by about twice what a random change of every distance by
+// one float ulp moves them, the stability rows at α ≥ 3e-6 not at all, and the scores of Table I by
+// at most one unit of their last digit.
 void filter_power_moments(const float* dist, int w, int h, int k, std::vector<float>* out,
                           const FaceTiles* tiles = nullptr);
 // filter_power_moments' values in one interleaved plane: texel i's E[d^(c+1)] at moments[4i + c]

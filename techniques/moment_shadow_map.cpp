@@ -62,7 +62,7 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(siz
 
 // The four moments of a texel are stored interleaved in map.a (texel i's at a[4i + 0..3]): a
 // bilinear lookup's row of taps is one 32-byte load and one cache line, where four planes took
-// four of each (README "Technique benchmark").
+// four of each (docs/performance_history.md).
 void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;

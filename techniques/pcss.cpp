@@ -3,7 +3,7 @@
 // follows from the light's size and the receiver's distance, (2) the mean distance of the
 // blockers found, (3) the penumbra width (d_receiver − d_blocker)/d_blocker × light radius,
 // (4) rotated Poisson PCF over that width. Every rotation comes from the pixel's counter-based
-// random number (core/rng.h), never the thread. README "PCSS" gives the geometry.
+// random number (core/rng.h), never the thread. docs/techniques/pcss.md gives the geometry.
 #include <algorithm>
 #include <cmath>
 #if defined(__x86_64__)

@@ -1,5 +1,5 @@
 #pragma once
-// The shaded image a person looks at, for any scene and any visibility mask (README "Pictures"):
+// The shaded image a person looks at, for any scene and any visibility mask (docs/programs/render.md):
 //   point light:     colour = albedo × (ambient + max(0, N·L) × visibility)
 //   slide projector: shade_projector (techniques/projector_shading.h), the slide's colour in L
 // per covered pixel, linear RGB, the light of unit intensity without distance falloff (the

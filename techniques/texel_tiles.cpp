@@ -118,7 +118,7 @@ struct PixelMarker {
   // projector; bilinear_taps' clamped texels of the receiver's texel coordinates), 8 pixels at a
   // time by footprint_tiles8 (the receivers' face and texel-coordinate operations without their
   // depth and slope terms: the tile pass took 18 % less on room100k than through the whole
-  // receivers, README "Technique benchmark"), the rest from make_receiver.
+  // receivers, docs/performance_history.md), the rest from make_receiver.
   template <class Fn>
   void footprints(size_t b, size_t e, const Fn& fn) const {
     static_assert(kTexelTile == 32, "footprint_tiles8 shifts by 5");
@@ -249,7 +249,7 @@ bool box_outside_face(const FaceLayout& layout, int f, const glm::dvec3& lo, con
 // box holds a depth discontinuity (a near and a far surface), whose pixels' footprints cover a
 // small part of the hull between them. Measured on the default scene at res 1024 (cube):
 // without the limit the hulls cover 52 % of the rendered texels' tiles against 39 % for the
-// pixels' own footprints; see README "The light-map pipeline".
+// pixels' own footprints; see docs/techniques/pipeline.md.
 constexpr uint64_t kMaxHullTexels = 32 * kTexelTile * kTexelTile;
 
 // A group of 2 × 2 blocks is decided by the box around it when its hulls cover at most this

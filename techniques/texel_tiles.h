@@ -4,8 +4,8 @@
 // transforms and blurs only those tiles, the rest of the face being read by no lookup. The
 // tiles are a superset of the exact ones, never a subset: a tile missing would leave a lookup
 // reading a value the filter did not write, so the masks would change (tests/techniques/
-// texel_tiles_test.cpp checks both against every pixel's own bilinear footprint). README "The
-// light-map pipeline".
+// texel_tiles_test.cpp checks both against every pixel's own bilinear footprint). See
+// docs/techniques/pipeline.md.
 #include <cstdint>
 #include <vector>
 

@@ -38,8 +38,7 @@ std::string keys_text(const MapParams& p) {
 
 // The two moments of a texel are stored interleaved in map.a (texel i's at a[2i], a[2i + 1]):
 // mean and variance, or m1 and m2 in fp32 mode. A bilinear lookup's row of taps is then one
-// 16-byte load and one cache line, where two planes took two of each (README "Technique
-// benchmark").
+// 16-byte load and one cache line, where two planes took two of each (docs/performance_history.md).
 void filter(const MapParams& p, LightMap& map) {
   for (size_t f = 0; f < map.layout.faces.size(); ++f) {
     if (!map.dist.rendered[f]) continue;

@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # Builds the kernel test binaries with every AVX2 and AVX-512 kernel emulated through SIMDe
-# (-DSHADOWLAB_EMULATE_SIMD=ON, into build-emu/) and runs them, so the AVX-512 kernels are
-# compared with their scalar oracles on a machine without AVX-512 (README "Testing the AVX-512
-# kernels on any machine"). Needs libsimde-dev (setup.sh --tests installs it).
-# Usage: bash tests/run_emulated_simd.sh [gtest arguments...]
+# (-DSHADOWLAB_EMULATE_SIMD=ON, into build-emu/) and runs them, so the AVX-512 kernels are compared
+# with their scalar oracles on a machine without AVX-512 (docs/testing.md). Needs libsimde-dev
+# (setup.sh --tests installs it). Usage: bash tests/run_emulated_simd.sh [gtest arguments...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! dpkg-query -W -f='${Status}' libsimde-dev 2>/dev/null | grep -q "install ok installed"; then

@@ -152,7 +152,7 @@ TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
 // of e^(c·(d − d_min)) >= 1), near 1 from both sides, at the fold (mantissas just below and
 // above 1.5) and over [e^-690, 1]; its error is m's rounding to float (6e-8 relative, so
 // absolute in ln m), the series in float (|ln m| <= 0.41: ~1e-7) and e·ln2 in double: 2e-7
-// absolute. Measured: README "Techniques", ESM.
+// absolute. Measured: docs/techniques/esm.md.
 TEST(ExpLog, WideExpAndLogHoldFloatPrecisionOverDoublesRange) {
   std::mt19937_64 rng(29);
   std::uniform_real_distribution<float> ux(-700.0f, 700.0f);

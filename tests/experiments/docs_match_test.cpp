@@ -1,6 +1,8 @@
 // The documentation's statements that are not generated, checked against the programs and the
-// registries they come from: the README's --scene list, its layouts and filters, the metric's
-// --json keys; --help's registry line; flicker's stated default size; docs/design.md's modules.
+// registries they come from: the --scene list of docs/programs/common_flags.md, the layouts and
+// filters of the README and docs/overview.md, the metric's --json keys on
+// docs/programs/metric.md; --help's registry line; flicker's stated default size;
+// docs/design.md's modules.
 // (docs/command_line.md is generated and has its own test.)
 #include <gtest/gtest.h>
 
@@ -29,9 +31,10 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-// The README line that starts with `prefix` (after leading spaces), else "".
-std::string readme_line(const std::string& prefix) {
-  std::istringstream in(read_text(test::source_path("README.md")));
+// The line of the document `doc` (a path in the source tree) that starts with `prefix` (after
+// leading spaces), else "".
+std::string doc_line(const std::string& doc, const std::string& prefix) {
+  std::istringstream in(read_text(test::source_path(doc)));
   std::string line;
   while (std::getline(in, line)) {
     const size_t start = line.find_first_not_of(' ');
@@ -67,30 +70,32 @@ void registry_layouts_filters(std::set<std::string>& layouts, std::set<std::stri
   }
 }
 
-TEST(DocsMatch, ReadmeSceneListIsEveryBuiltInScene) {
-  const std::string line = readme_line("- `--scene S`:");
-  ASSERT_FALSE(line.empty()) << "README has no '- `--scene S`:' line";
+TEST(DocsMatch, CommonFlagsSceneListIsEveryBuiltInScene) {
+  const std::string line = doc_line("docs/programs/common_flags.md", "- `--scene S`:");
+  ASSERT_FALSE(line.empty()) << "docs/programs/common_flags.md has no '- `--scene S`:' line";
   const size_t open = line.find("a built-in name ("), close = line.find(';', open);
   ASSERT_NE(open, std::string::npos) << line;
   const std::set<std::string> listed = backticked(line.substr(open, close - open));
   const std::vector<std::string> names = builtin_scene_names();
   EXPECT_EQ(listed, std::set<std::string>(names.begin(), names.end())) << line;
-  // --help names the same scenes (both come from the registry; the README must follow).
+  // --help names the same scenes (both come from the registry; the page must follow).
   const std::string help = run("render --help").out;
   for (const std::string& n : names) EXPECT_NE(help.find(n), std::string::npos) << n;
   EXPECT_NE(line.find("`.json` scene file"), std::string::npos) << line;
 }
 
-TEST(DocsMatch, ReadmeLayoutsAndFiltersAreTheRegistrys) {
+TEST(DocsMatch, ReadmeAndOverviewLayoutsAndFiltersAreTheRegistrys) {
   std::set<std::string> layouts, filters;
   registry_layouts_filters(layouts, filters);
   ASSERT_EQ(layouts.size(), 4u);
   ASSERT_EQ(filters.size(), 6u);
-  EXPECT_EQ(backticked(readme_line("- layouts:")), layouts) << readme_line("- layouts:");
-  EXPECT_EQ(backticked(readme_line("- filters:")), filters) << readme_line("- filters:");
   const std::string count = std::to_string(layouts.size()) + " × " + std::to_string(filters.size()) +
                             " = " + std::to_string(layouts.size() * filters.size()) + " techniques";
-  EXPECT_NE(readme_line("- so ").find(count), std::string::npos) << readme_line("- so ");
+  for (const char* doc : {"README.md", "docs/overview.md"}) {
+    EXPECT_EQ(backticked(doc_line(doc, "- layouts:")), layouts) << doc << ": " << doc_line(doc, "- layouts:");
+    EXPECT_EQ(backticked(doc_line(doc, "- filters:")), filters) << doc << ": " << doc_line(doc, "- filters:");
+    EXPECT_NE(doc_line(doc, "- so ").find(count), std::string::npos) << doc << ": " << doc_line(doc, "- so ");
+  }
 }
 
 // The line above the registry in every --help states the naming rule with every layout letter
@@ -111,19 +116,19 @@ TEST(DocsMatch, HelpRegistryLineNamesEveryLayoutAndFilter) {
   }
 }
 
-// Every key of `metric --json` is in the README's list of them.
-TEST(DocsMatch, ReadmeListsEveryMetricJsonKey) {
+// Every key of `metric --json` is in the list of them on the metric program's page.
+TEST(DocsMatch, MetricPageListsEveryMetricJsonKey) {
   const std::string exr = test::source_path("tests/golden/csm_default_160x120.exr");
   const test::ProcResult r = run("metric " + exr + " " + exr + " --json --shadow-ms 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  const std::string line = readme_line("- **`build/experiments/metric");
+  const std::string line = doc_line("docs/programs/metric.md", "- **`build/experiments/metric");
   ASSERT_FALSE(line.empty());
   const size_t keys = line.find("with the keys");
   ASSERT_NE(keys, std::string::npos) << line;
   const std::string listed = line.substr(keys);
   for (auto it = j.begin(); it != j.end(); ++it)
-    EXPECT_NE(listed.find(it.key()), std::string::npos) << "README lacks metric --json key " << it.key();
+    EXPECT_NE(listed.find(it.key()), std::string::npos) << "docs/programs/metric.md lacks metric --json key " << it.key();
 }
 
 // flicker's --help states the image size the program renders without --width/--height.

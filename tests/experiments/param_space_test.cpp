@@ -28,8 +28,8 @@ TEST(ParamSpace, EveryDomainFormGivesItsValues) {
   EXPECT_EQ(parse_domain("5..5/1", "f"), (V{"5"}));
 }
 
-// README "Tuning": whole numbers below 1e15 exactly, others to 4 significant digits, an exponent
-// without '+' (the text a spec accepts). 1e18 and 1e16 are whole but beyond 1e15: "1e18";
+// docs/programs/tune.md: whole numbers below 1e15 exactly, others to 4 significant digits, an
+// exponent without '+' (the text a spec accepts). 1e18 and 1e16 are whole but beyond 1e15: "1e18";
 // 1/3 steps give 4 digits; 123456.5 and 123457.5 both read 1.235e5, so they are refused as one
 // value given twice rather than run as two.
 TEST(ParamSpace, ComputedValuesHaveFourSignificantDigits) {

@@ -115,8 +115,8 @@ TEST(Provenance, FromRefusesASceneWhoseFileChanged) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/c"));
 }
 
-// --from=FILE and --out=DIR beside it are the two-word forms (README: --flag=value works for
-// every flag).
+// --from=FILE and --out=DIR beside it are the two-word forms (docs/programs/common_flags.md:
+// --flag=value works for every flag).
 TEST(Provenance, FromTakesTheEqualsForm) {
   const std::string dir = test::binary_path("provenance_from_equals");
   std::filesystem::remove_all(dir);

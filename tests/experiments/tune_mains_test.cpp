@@ -111,8 +111,9 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
   const std::vector<std::string> merged_cmd = b["provenance"]["command"];
   EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--shard"), 0);
   EXPECT_EQ(std::count(merged_cmd.begin(), merged_cmd.end(), "--out"), 0);
-  // --from=FILE is --from FILE (the README: --flag=value works for every flag): the same file's
-  // checks answer, here its --out given as --out= beside a flag --from does not allow.
+  // --from=FILE is --from FILE (--flag=value works for every flag: docs/programs/common_flags.md):
+  // the same file's checks answer, here its --out given as --out= beside a flag --from does not
+  // allow.
   expect_clear_error("tune --from=" + dir + "/merged/tune.json --out=" + dir + "/x --spp 3",
                      "--from: only --out DIR and --threads N may be given with --from, got '--spp'");
   nlohmann::json missing = read_json(dir + "/shards/tune_shard2of3.json");

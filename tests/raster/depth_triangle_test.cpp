@@ -6,7 +6,7 @@
 // same bytes of depth and ids. Viewports whose width is not a multiple of 8 cut the last block
 // of a row (the AVX-512 walk masks its lanes); triangles reach into the guard band, where edge
 // values pass int32 within a block. (An AVX2 form of this walk was measured and not kept:
-// README "Rasterizer benchmark", tenth session; it passed this test, which failed with its
+// docs/performance_history.md; it passed this test, which failed with its
 // int32 range check or its cut block broken.)
 #include <gtest/gtest.h>
 

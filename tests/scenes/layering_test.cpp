@@ -1,4 +1,4 @@
-// The folder layering of README "Layout", read off the sources' #include lines: core includes
+// The folder layering of docs/layout.md, read off the sources' #include lines: core includes
 // only core; scenes only core and scenes; nothing in raster, raytrace, metric or techniques
 // includes scenes; Embree's headers only in raytrace.
 #include <gtest/gtest.h>

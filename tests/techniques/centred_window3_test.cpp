@@ -114,7 +114,7 @@ Rows spike_rows(int n, uint32_t seed, float base, float spread) {
 
 // The float mean and variance against long double, with u = 2^-24 and σ² the exact variance:
 // the mean within u·|mean| + 26u·σ and the variance within 282u·σ² (the header's first-order
-// bounds: README "Techniques", VSM, Precision, derives both).
+// bounds: docs/techniques/vsm.md, Precision, derives both).
 TEST(CentredWindow3, MeanAndVarianceWithinTheirAnalysedBounds) {
   const long double u = std::ldexp(1.0L, -24);
   long double worst_mean = 0.0L, worst_var = 0.0L;

@@ -70,7 +70,7 @@ TEST(DualParaboloid, MapInverseAndRenderAgree) {
 
 // Against one Embree ray per pixel (hard light, res 1024): DPSM's straight image edges make it
 // disagree more than the cube; splitting edges longer than 16 texels (tess=16) brings it down, and
-// res 32 disagrees more still. Measured (2026-11-28, 19,200 pixels): dsm 0.29 %, tess=16 0.089 %,
+// res 32 disagrees more still. Measured (19,200 pixels): dsm 0.29 %, tess=16 0.089 %,
 // res 32 2.1 %, dvsm tess=16 0.031 % (csm: 0.031 %). Bounds about 3x; tess must at least halve it.
 TEST(DualParaboloid, ShadowsMatchHardRayTracingAndTessHelps) {
   Scene scene = test::small_scene("default", 160, 120);

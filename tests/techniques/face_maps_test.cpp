@@ -72,7 +72,7 @@ TEST(FaceMaps, FacesNeededAreTheFacesOfTheLookedUpPixels) {
 // Fine maps agree with one Embree ray per pixel almost everywhere (a 1024 map gives several
 // texels per pixel of a 160×120 image: only shadow-edge pixels may differ), and a coarse map
 // disagrees more.
-// Bounds about 3× the measured mismatch (2026-11-28, 19200 pixels): tsm 0.063 %, cvsm 0.026 %,
+// Bounds about 3× the measured mismatch (19200 pixels): tsm 0.063 %, cvsm 0.026 %,
 // tvsm 0.130 %, cesm 0.083 %, tesm 0.120 %, cevsm 0.052 %, tevsm 0.141 %, cmsm 0.026 %,
 // tmsm 0.094 %.
 double bound_of(const std::string& name) {
@@ -101,7 +101,7 @@ TEST(FaceMaps, FineMapsMatchHardRayTracing) {
 
 // Rotated Poisson PCF (and PCSS, rpdb) against one Embree ray per pixel, hard light: at res 1024 a 5-texel disk
 // is a few millimetres wide here, so only shadow-edge pixels differ; res 32 differs more.
-// Bounds about 3× the measured mismatch (2026-11-28, 19200 pixels): csm 0.052 %, tsm 0.120 %.
+// Bounds about 3× the measured mismatch (19200 pixels): csm 0.052 %, tsm 0.120 %.
 // PCSS with light_size=0 (a 1-texel Poisson PCF after a blocker search): cpcss 0.021 %, tpcss
 // 0.052 %. Grid PCF 3×3 with the receiver-plane depth bias: csm 0.026 %, tsm 0.063 %.
 TEST(FaceMaps, PoissonPcfMatchesHardRayTracing) {

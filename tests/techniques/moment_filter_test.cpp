@@ -64,7 +64,7 @@ TEST(MomentFilter, VarianceNearFarPlaneSurvivesInDoubleNotInFp32) {
 // ESM with c = 500 over depths spread across [0, 1]: exp(500·d) overflows fp32 (and e^500 is
 // near double's limit); the log-space filter equals log(mean(exp(c·d))) computed by
 // brute force in long double (range to e^11356), to float precision of c·z. The bound from the
-// filter's float steps (README "Techniques", ESM): each exponent c·(d − d_min) is rounded once to
+// filter's float steps (docs/techniques/esm.md): each exponent c·(d − d_min) is rounded once to
 // float (relative 2^-24, so up to c·2^-24 in every term's log, hence in the mean's), exp_wide and
 // log_wide add at most 3e-7 and 2e-7, and the stored float rounds by half its ulp. Measured
 // worst 2.7e-5 against a bound of 6.0e-5 at the largest values.

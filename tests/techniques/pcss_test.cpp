@@ -49,11 +49,11 @@ Errors compare(const ImageF& mask, const ImageF& ref, const GBuffer& g) {
   return e;
 }
 
-// Measured (2026-11-28), 128 PCF taps (with the default 32 the taps' noise alone gives 0.049
-// and widens the 10-90 % band by 12 %): mean |PCSS − reference| over the reference's penumbra
-// 0.0166 (cube) and 0.0164 (tetrahedral); penumbra pixels (0.1 < v < 0.9) 640 for both and the
-// reference; estimate=model (2026-12-02) 0.0166, 640 pixels. Controls: hard csm 0.23; PCSS with a quarter of the light size 0.18. Bounds: 0.05,
-// the penumbra within 10 %, and the controls above 0.1.
+// Measured with 128 PCF taps (with the default 32 the taps' noise alone gives 0.049 and widens the
+// 10-90 % band by 12 %): mean |PCSS − reference| over the reference's penumbra 0.0166 (cube) and
+// 0.0164 (tetrahedral); penumbra pixels (0.1 < v < 0.9) 640 for both and the reference;
+// estimate=model 0.0166, 640 pixels. Controls: hard csm 0.23; PCSS with a quarter of the light size
+// 0.18. Bounds: 0.05, the penumbra within 10 %, and the controls above 0.1.
 TEST(Pcss, PenumbraOfAParallelOccluderMatchesTheSoftReference) {
   const Scene scene = slab_scene();
   const GBuffer g = render_gbuffer(scene);
