@@ -46,7 +46,8 @@ TEST(Standalone, AMissingAssetIsOneInputErrorNamingIt) {
 }
 
 // Text that names a folder outside the repository: the machines' shared folder, reached
-// relatively or absolutely, or anything under /work/. Split so that this file does not match.
+// relatively or absolutely, or anything under the machines' work root. Split so that this file
+// does not match.
 const std::vector<std::string>& outside_markers() {
   static const std::vector<std::string> m = {std::string("../") + "shared",
                                              std::string("shared/") + "assets",
