@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -90,13 +91,13 @@ TEST(Standalone, NoFileNamesAPathOutsideTheRepository) {
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (text.find('\0') != std::string::npos) continue;
     ++scanned;
-    for (const std::string& m : outside_markers()) {
-      const size_t at = text.find(m);
-      if (at == std::string::npos) continue;
-      const size_t line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
-      ADD_FAILURE() << rel << ":" << line << " names a path outside the repository ('" << m
-                    << "')";
-    }
+    for (const std::string& m : outside_markers())
+      for (size_t at = text.find(m); at != std::string::npos; at = text.find(m, at + 1)) {
+        const auto end = text.begin() + static_cast<std::ptrdiff_t>(at);
+        const size_t line = 1 + size_t(std::count(text.begin(), end, '\n'));
+        ADD_FAILURE() << rel << ":" << line << " names a path outside the repository ('" << m
+                      << "')";
+      }
   }
   EXPECT_GT(scanned, 100u);
 }
