@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "techniques/light_faces.h"
@@ -94,14 +93,11 @@ GlDepthCube make_gl_depth_cube(const Scene& scene, int res) {
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 
-  // The faces' axes are shadowlab's (view −z = forward), so both render the same images.
+  // shadowlab's own face matrices: both render the same images (GL's rows bottom first).
   const FaceLayout layout = cube_layout(res, 0);
-  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, c.near, c.far);
-  const vec3 light = scene.light.position;
   glGenFramebuffers(6, c.framebuffers);
   for (int f = 0; f < 6; ++f) {
-    const LightFace& face = layout.faces[size_t(f)];
-    const glm::mat4 vp = projection * glm::lookAt(light, light + face.forward, face.up);
+    const mat4 vp = face_view_proj(layout.faces[size_t(f)], scene.light);
     const float* m = glm::value_ptr(vp);
     for (int k = 0; k < 16; ++k) c.view_projection[f][k] = m[k];
     glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffers[f]);
@@ -133,30 +129,33 @@ void render_gl_depth_cube(const GlDepthCube& c) {
   glFinish();
 }
 
-double gl_mean_radial_distance(const GlDepthCube& c, size_t& covered) {
-  std::vector<float> depth(size_t(c.res) * size_t(c.res));
+std::vector<std::vector<float>> gl_radial_distances(const GlDepthCube& c) {
+  const size_t n_texels = size_t(c.res) * size_t(c.res);
+  std::vector<float> depth(n_texels);
+  std::vector<std::vector<float>> out(6, std::vector<float>(n_texels));
   glBindTexture(GL_TEXTURE_CUBE_MAP, c.texture);
-  double sum = 0.0;
-  covered = 0;
   const double n = c.near, f = c.far;
   for (int face = 0; face < 6; ++face) {
     glGetTexImage(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                   depth.data());
-    for (int y = 0; y < c.res; ++y)
+    for (int y = 0; y < c.res; ++y)  // GL row y (from the bottom) is row res − 1 − y here
       for (int x = 0; x < c.res; ++x) {
         const double d = depth[size_t(y) * size_t(c.res) + size_t(x)];
-        if (d >= 1.0) continue;  // cleared: no surface in this texel
-        // Window depth d -> NDC z = 2d − 1 -> eye distance along the face's forward axis
-        // (the inverse of glm::perspective's depth row), then along the texel-centre ray:
-        // its direction is (u, v, 1) in face coordinates, u, v in [−1, 1] (90°).
+        float& r = out[size_t(face)][size_t(c.res - 1 - y) * size_t(c.res) + size_t(x)];
+        if (d >= 1.0) {  // cleared: no surface in this texel
+          r = INFINITY;
+          continue;
+        }
+        // Window depth d -> NDC z = 2d − 1 -> distance along the face's forward axis (the
+        // inverse of the perspective depth row), then along the texel-centre ray, whose
+        // direction is (u, v, 1) in face coordinates, u, v in [−1, 1] (90°).
         const double z_ndc = 2.0 * d - 1.0;
         const double along = 2.0 * f * n / (f + n - z_ndc * (f - n));
         const double u = 2.0 * (x + 0.5) / c.res - 1.0, v = 2.0 * (y + 0.5) / c.res - 1.0;
-        sum += along * std::sqrt(1.0 + u * u + v * v);
-        ++covered;
+        r = float(along * std::sqrt(1.0 + u * u + v * v));
       }
   }
-  return covered ? sum / double(covered) : 0.0;
+  return out;
 }
 
 void destroy_gl_depth_cube(GlDepthCube& c) {

@@ -1,7 +1,7 @@
 // llvmpipe_bench: shadowlab's depth-only cube shadow map against Mesa's llvmpipe on the same
 // triangles, the same light and the same six 90° faces of res² texels (docs/llvmpipe.md).
 // Both sides render every triangle into every face (no object culling, no face culling); each
-// is warmed up twice, checked against the other (the mean radial distance over the cube), then
+// is warmed up twice, checked against the other (texel by texel), then
 // timed in rounds that alternate the two, one render each, so that a slow phase of the machine
 // falls on both. Prints each side's median, min and max and the ratio of the medians.
 #include <algorithm>
@@ -41,17 +41,25 @@ double time_ms(Fn&& fn) {
   return ms_since(s);
 }
 
-// The mean of the finite stored distances, in metres (they are |p − L| / far).
-double mean_radial_distance(const FaceDistances& d, float far, size_t& covered) {
-  double sum = 0.0;
-  covered = 0;
-  for (const auto& face : d.distance)
-    for (const float v : face)
-      if (std::isfinite(v)) {
-        sum += double(v) * far;
-        ++covered;
-      }
-  return covered ? sum / double(covered) : 0.0;
+// Texel by texel: the texels where one saw a surface and the other nothing, or both a surface
+// at distances more than 1 mm + 0.1 % apart (the two depth encodings round differently).
+// shadowlab stores |p − L| / far.
+struct Agreement {
+  size_t differ = 0, texels = 0;
+};
+
+Agreement compare(const FaceDistances& ours, float far,
+                  const std::vector<std::vector<float>>& theirs) {
+  Agreement a;
+  for (size_t f = 0; f < theirs.size(); ++f)
+    for (size_t i = 0; i < theirs[f].size(); ++i) {
+      const double o = double(ours.distance[f][i]) * far, t = theirs[f][i];
+      const bool ok = std::isfinite(o) ? std::isfinite(t) && std::abs(o - t) <= 1e-3 + 1e-3 * o
+                                       : !std::isfinite(t);
+      a.differ += !ok;
+      ++a.texels;
+    }
+  return a;
 }
 
 }  // namespace
@@ -110,18 +118,14 @@ int main(int argc, char** argv) {
       ours();
       theirs();
     }
-    size_t ours_covered = 0, theirs_covered = 0;
-    const double ours_mean = mean_radial_distance(ours_out, scene.light.far, ours_covered);
-    const double theirs_mean = gl_mean_radial_distance(gl, theirs_covered);
-    const double rel = std::abs(ours_mean - theirs_mean) / std::max(ours_mean, 1e-30);
-    std::printf("check: mean radial distance %.6f m over %zu texels (shadowlab), %.6f m over %zu "
-                "(llvmpipe): relative difference %.2e\n",
-                ours_mean, ours_covered, theirs_mean, theirs_covered, rel);
-    // Rasterization rules and depth precision differ by a few texels and micrometres; a wrong
-    // light, face or range moves the mean by far more than 0.5 %.
-    if (!(rel <= 5e-3))
-      throw std::runtime_error("the two renders disagree (mean radial distance differs by more "
-                               "than 0.5 %)");
+    const Agreement agree = compare(ours_out, scene.light.far, gl_radial_distances(gl));
+    std::printf("check: %zu of the %zu texels differ between the two renders\n", agree.differ,
+                agree.texels);
+    // Texels whose centre lies on a silhouette edge may see different surfaces under the two
+    // rasterization rules: a few per mille. A wrong light, face, orientation or range
+    // disagrees almost everywhere.
+    if (agree.differ * 100 > agree.texels)
+      throw std::runtime_error("the two renders disagree on more than 1 % of the texels");
 
     std::vector<double> t_ours, t_theirs, ratios;
     for (int r = 0; r < rounds; ++r) {
