@@ -1,17 +1,17 @@
 #pragma once
-// Where the shared read-only model assets live (bunny, palm tree, plants). Built-in scenes that
-// use real models (make_builtin_scene("bunny")) read them from here.
+// The model assets the built-in scenes and the tests read (the Stanford bunny, the palm tree, the
+// plants, the benchmark room's OBJ): the repository's own assets/ folder (docs/assets.md lists
+// them with their sources and licences). Nothing outside the repository is looked at.
 #include <string>
 
 namespace shadowlab {
 
-// The assets folder: $SHADOWLAB_ASSETS if set; else <source tree>/../shared/assets (the
-// team's layout, compiled in); else /work/shared/assets (where our machines keep it, so a
-// clone elsewhere — CI's — still finds it); "" when none exists.
-std::string shared_assets_dir();
+// <source tree>/assets, the folder the build was configured from (compiled in, so a program
+// finds it from any working directory).
+std::string assets_dir();
 
-// shared_assets_dir() + "/" + relative, or InputError(where, "needs the shared asset ...") when
-// the folder or the file is missing.
-std::string shared_asset_path(const std::string& relative, const std::string& where);
+// assets_dir() + "/" + relative, or InputError(where, "needs the asset ...") when that file is
+// missing (a source tree whose assets/ was not checked out).
+std::string asset_path(const std::string& relative, const std::string& where);
 
 }  // namespace shadowlab

@@ -7,7 +7,7 @@
 namespace shadowlab {
 
 Scene make_bunny_scene(std::vector<std::string>* notes) {
-  const std::string path = shared_asset_path("bunny/stanford-bunny.obj", "--scene bunny");
+  const std::string path = asset_path("bunny/stanford-bunny.obj", "--scene bunny");
   Scene s = load_obj_scene(path, notes);
   s.name = "bunny";
   SL_CHECK_EQ(s.meshes.size(), size_t(1));

@@ -1,6 +1,6 @@
 #pragma once
 // The built-in "bunny" scene of the slide-projector experiment (Dowling): the Stanford bunny
-// of ../shared/assets/bunny (69,451 triangles, ~0.155 m wide, metres as stored) standing on a
+// of assets/bunny (69,451 triangles, ~0.155 m wide, metres as stored) standing on a
 // ground quad in front of a back wall, seen from the front; a posed projector in front of it,
 // up and to the left, so the bunny's shadow falls on the wall and the ground.
 #include <string>

@@ -29,7 +29,7 @@ Scene make_foliage_scene(std::vector<std::string>* notes) {
       {"plants/fern3.obj", {-2.6f, 0.22f, 0.7f}},
   };
   for (const Placement& p : plants) {
-    Scene plant = load_obj_scene(shared_asset_path(p.asset, where), notes);
+    Scene plant = load_obj_scene(asset_path(p.asset, where), notes);
     // Centimetres to metres, then placed (a uniform positive scale: normals unchanged).
     for (Mesh& m : plant.meshes)
       for (vec3& q : m.positions) q = q * 0.01f + p.at;

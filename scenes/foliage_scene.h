@@ -1,7 +1,7 @@
 #pragma once
 // The built-in "foliage" scene (Krave's stress case for shadow maps): leaf cards with alpha
-// cut-outs casting leaf-shaped shadows. The palm tree (../shared/assets/palm_tree) and the four
-// plants (../shared/assets/plants), stored in centimetres, scaled by 0.01 to metres, on a
+// cut-outs casting leaf-shaped shadows. The palm tree (assets/palm_tree) and the four
+// plants (assets/plants), stored in centimetres, scaled by 0.01 to metres, on a
 // 9 × 7 m ground beside a wall, one hard point light above, framed for 1024 × 768.
 #include <string>
 #include <vector>

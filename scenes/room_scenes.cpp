@@ -8,7 +8,7 @@
 namespace shadowlab {
 namespace {
 
-// The benchmark room of ../shared/assets/bench/room100k.obj, rebuilt procedurally (layout read
+// The benchmark room of assets/bench/room100k.obj, rebuilt procedurally (layout read
 // off the OBJ's vertices group by group: sphere centre = mean of the unique vertices, radius =
 // their mean distance to it; torus centre = vertex mean, axis = least-variance direction,
 // major/minor radius = mid-point/half-width of the vertices' distances from the axis).

@@ -11,7 +11,7 @@ namespace shadowlab {
 
 // Loads an OBJ (see scenes/obj_loader.h) and gives it a camera and a light:
 // - If the OBJ's leading comments carry a light and/or camera (read_obj_view_header, e.g.
-//   bench/room100k.obj), those are used exactly.
+//   assets/bench/room100k.obj), those are used exactly.
 // - Otherwise, with c = bounds centre and r = bounding-sphere radius (half the bounds
 //   diagonal): camera at c + d·normalize(0, 1, 1) looking at c, up +y, fov_y 60°, 1024×768,
 //   d = 1.05·r / sin(30°) (the sphere fits the vertical fov, and the wider horizontal one),

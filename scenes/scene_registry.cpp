@@ -23,11 +23,10 @@ const std::vector<BuiltinScene>& builtin_scenes() {
                    "99,852 triangles) with its light and camera",
        make_room100k_scene},
       {"room1m", "the benchmark room tessellated finer: 999,436 triangles", make_room1m_scene},
-      {"bunny", "the Stanford bunny on a ground quad before a wall, with a posed slide projector "
-                "(needs the shared assets)",
+      {"bunny", "the Stanford bunny on a ground quad before a wall, with a posed slide projector",
        [] { return make_bunny_scene(); }},
       {"foliage", "a palm tree and four plants (alpha-cut leaf cards) on a ground beside a wall, "
-                  "one hard point light (needs the shared assets)",
+                  "one hard point light",
        [] { return make_foliage_scene(); }},
       {"grazing", "a light 0.6 m over one end of a 40 m floor with posts and a fence of 2 cm "
                   "slats: long shadows at 1-6 degree incidence (aliasing, acne)",

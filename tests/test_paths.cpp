@@ -16,6 +16,6 @@ std::string binary_path(const std::string& relative) {
   return path;
 }
 
-std::string assets_dir() { return shared_assets_dir(); }
+std::string assets_dir() { return shadowlab::assets_dir(); }
 
 }  // namespace shadowlab::test

@@ -1,5 +1,5 @@
 #pragma once
-// Paths the tests need: the source tree, the build tree and the shared test assets.
+// Paths the tests need: the source tree, the build tree and the assets.
 #include <string>
 
 namespace shadowlab::test {
@@ -8,7 +8,7 @@ namespace shadowlab::test {
 std::string source_path(const std::string& relative);
 // Absolute path of a file inside the build tree (scratch output of tests goes there).
 std::string binary_path(const std::string& relative);
-// Folder of the shared read-only assets (core/assets.h: shared_assets_dir()); empty if absent.
+// The repository's assets/ folder (core/assets.h: assets_dir()).
 std::string assets_dir();
 
 }  // namespace shadowlab::test

@@ -11,7 +11,6 @@ namespace shadowlab {
 namespace {
 
 TEST(LodMasking, FullMeshIsItsOwnReferenceAndCoarserLevelsDiffer) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   Scene scene = make_builtin_scene("bunny");
   apply_camera_size(scene, 160, 120);
   MaskingConfig c;
@@ -49,7 +48,6 @@ TEST(LodMasking, FullMeshIsItsOwnReferenceAndCoarserLevelsDiffer) {
 }
 
 TEST(LodMasking, BadSlideNamesTheFlag) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   Scene scene = make_builtin_scene("bunny");
   apply_camera_size(scene, 32, 24);
   MaskingConfig c;

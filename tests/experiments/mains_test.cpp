@@ -248,7 +248,7 @@ TEST(Mains, RenderIsIdenticalForOneTwoAndSevenThreads) {
 // default scene and on an OBJ.
 TEST(Mains, ScalarAndSimdRasterPathsGiveIdenticalRenders) {
   std::vector<std::string> scenes = {"default"};
-  if (!test::assets_dir().empty()) scenes.push_back(test::assets_dir() + "/bunny/stanford-bunny.obj");
+  scenes.push_back(test::assets_dir() + "/bunny/stanford-bunny.obj");
   const std::vector<std::string> all = {"csm:res=512,pcf=3", "csm:res=256", "tsm:res=256",
                                         "tsm:res=256,slope=3,bias=0.002", "tsm:res=256,pcf=5",
                                         "psm:res=256 --slide spot", "psm:res=256,pcf=3 --slide spot",
@@ -638,7 +638,6 @@ TEST(Mains, AlphaFlagsAreChecked) {
 }
 
 TEST(Mains, ProjectorMaskingPrintsTablesAndSheet) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const std::string out = test::binary_path("masking_out");
   std::filesystem::remove(out + "/contact_sheet.png");
   const ProcResult r = run("projector_masking --width 64 --height 48 --repeats 1 --levels 300 "
@@ -656,7 +655,6 @@ TEST(Mains, ProjectorMaskingPrintsTablesAndSheet) {
 }
 
 TEST(Mains, DepthPrecisionPrintsEveryFormatOnBothScenes) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const std::string out = test::binary_path("depth_out");
   const ProcResult r = run("depth_precision --width 64 --height 48 --repeats 1 --spp 4 "
                            "--csm csm:res=64 --psm psm:res=64 --no-cache --out " + out);

@@ -20,8 +20,8 @@ TEST(GBufferResolveSimd, MatchesScalarResolveBitForBit) {
   if (!resolve_run8_simd()) GTEST_SKIP() << "no AVX2 path on this CPU (or SHADOWLAB_SCALAR=1)";
   // foliage and bunny mix meshes in one row's 8 pixels (the mixed-triangle path).
   std::vector<std::string> names = {"default", "room100k", "plane", "foliage", "bunny"};
-  // An OBJ with uvs and vertex normals, when the shared assets are present.
-  if (!test::assets_dir().empty()) names.push_back(test::assets_dir() + "/palm_tree/palm_tree.obj");
+  // An OBJ with uvs and vertex normals.
+  names.push_back(test::assets_dir() + "/palm_tree/palm_tree.obj");
   names.push_back("mixed");
   for (const std::string& name : names) {
     Scene scene = name == "mixed"                           ? make_builtin_scene("default")

@@ -405,7 +405,6 @@ double load_ms(const std::string& path, Scene& out) {
 }
 
 TEST(ObjAssets, BunnyHasExactlyItsTriangles) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   Scene s;
   const double ms = load_ms(test::assets_dir() + "/bunny/stanford-bunny.obj", s);
   std::printf("[ timing ] bunny: %.1f ms\n", ms);
@@ -417,7 +416,6 @@ TEST(ObjAssets, BunnyHasExactlyItsTriangles) {
 }
 
 TEST(ObjAssets, Room100kHasExactlyItsTriangles) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   Scene s;
   const double ms = load_ms(test::assets_dir() + "/bench/room100k.obj", s);
   std::printf("[ timing ] room100k: %.1f ms\n", ms);
@@ -426,7 +424,6 @@ TEST(ObjAssets, Room100kHasExactlyItsTriangles) {
 }
 
 TEST(ObjAssets, PalmLeavesAreAlphaTexturedTrunkIsNot) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   const Scene s = load_obj_scene(test::assets_dir() + "/palm_tree/palm_tree.obj");
   EXPECT_EQ(s.triangle_count(), 632u);
   int leaves = -1, trunk = -1;
@@ -454,7 +451,6 @@ TEST(ObjAssets, PalmLeavesAreAlphaTexturedTrunkIsNot) {
 }
 
 TEST(ObjAssets, PlantsLoadWithCutouts) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   const std::pair<const char*, size_t> plants[] = {
       {"parviflora", 448}, {"fern3", 608}, {"shrub", 472}, {"shrub_red", 508}};
   for (const auto& [name, triangles] : plants) {

@@ -135,8 +135,6 @@ TEST(RoomScenes, MatchTheObjGroupByGroup) {
   // room100k's vertices are the OBJ's, up to its printed digits: every vertex of one mesh lies
   // within 0.1 mm of a vertex of the other (both ways).
   const std::string obj = test::assets_dir() + "/bench/room100k.obj";
-  if (test::assets_dir().empty() || !std::filesystem::exists(obj))
-    GTEST_SKIP() << "asset " << obj << " not found";
   std::vector<std::string> notes;
   const Scene ref = make_obj_scene(obj, &notes);
   ASSERT_EQ(ref.meshes.size(), 65u);

@@ -272,7 +272,6 @@ TEST(SceneLibrary, ObjScenesThatCannotBeFramedOrShadowedAreErrors) {
 }
 
 TEST(SceneLibrary, Room100kUsesTheCameraAndLightOfItsHeader) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets folder not found";
   std::vector<std::string> notes;
   const Scene s = make_obj_scene(test::assets_dir() + "/bench/room100k.obj", &notes);
   EXPECT_EQ(s.light.position, vec3(0, 4, 0));

@@ -61,7 +61,6 @@ TEST(Determinism, OneTwoAndSevenThreadsGiveIdenticalBytes) {
 
 // Alpha discard (foliage) and the projector path, at 1, 2 and 7 threads.
 TEST(Determinism, FoliageAndProjectorAreThreadCountIndependent) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const Scene foliage = test::small_scene("foliage", 160, 120);
   Scene bunny = test::small_scene("bunny", 160, 120);
   Projector p = bunny.projector;

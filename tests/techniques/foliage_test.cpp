@@ -159,7 +159,6 @@ const Scene& foliage(int w, int h) {
 }
 
 TEST(Foliage, CameraPassMatchesEmbreePrimaryRaysWithTheAlphaFilter) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const Scene& s = foliage(512, 384);
   const GBuffer g = render_gbuffer(s);
   const EmbreeScene rt(s);
@@ -178,7 +177,6 @@ TEST(Foliage, CameraPassMatchesEmbreePrimaryRaysWithTheAlphaFilter) {
 }
 
 TEST(Foliage, EveryMapTechniqueIsFiniteAndWithinItsBoundOfTheReference) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets not found";
   const Scene& s = foliage(256, 192);
   const GBuffer g = render_gbuffer(s);
   RunOptions opt;

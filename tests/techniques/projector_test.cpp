@@ -141,7 +141,6 @@ void expect_agreement(const Scene& scene, const std::string& what) {
 }
 
 TEST(ProjectorShadows, PsmMatchesHardRayTracingOnBunny) {
-  if (test::assets_dir().empty()) GTEST_SKIP() << "shared assets missing: bunny";
   Scene scene = make_builtin_scene("bunny");
   apply_camera_size(scene, 256, 192);
   Projector p = scene.projector;  // the scene's own pose

@@ -69,14 +69,12 @@ std::vector<SceneCase> scenes() {
   std::vector<SceneCase> out;
   out.push_back({"default", test::small_scene("default", 320, 240)});
   out.push_back({"grazing", test::small_scene("grazing", 320, 240)});
-  if (!test::assets_dir().empty()) {
-    out.push_back({"foliage", test::small_scene("foliage", 320, 240)});
-    Scene bunny = test::small_scene("bunny", 320, 240);
-    Projector pr = bunny.projector;
-    pr.slide = make_slide("grid:amp=1,freq=4", "test");
-    set_projector(bunny, pr, "test");
-    out.push_back({"bunny+projector", bunny});
-  }
+  out.push_back({"foliage", test::small_scene("foliage", 320, 240)});
+  Scene bunny = test::small_scene("bunny", 320, 240);
+  Projector pr = bunny.projector;
+  pr.slide = make_slide("grid:amp=1,freq=4", "test");
+  set_projector(bunny, pr, "test");
+  out.push_back({"bunny+projector", bunny});
   return out;
 }
 
