@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/spec.h"
 #include "core/parse_number.h"
+#include "techniques/technique.h"
 
 namespace shadowlab {
 namespace {
@@ -194,6 +195,15 @@ bool same_space(const ParamSpace& a, const ParamSpace& b) {
       return false;
   }
   return true;
+}
+
+std::vector<std::string> default_param_spaces() {
+  // Depth compare on the three layouts that cover every direction, and every filter on the cube.
+  static const char* const kDefaultTuneTechniques[] = {"csm", "tsm", "dsm", "cvsm", "cesm",
+                                                       "cevsm", "cmsm", "cpcss"};
+  std::vector<std::string> out;
+  for (const char* name : kDefaultTuneTechniques) out.push_back(technique_tune_space(name, "--space"));
+  return out;
 }
 
 std::string space_point(const ParamSpace& space, size_t i) {

@@ -43,6 +43,10 @@ bool same_space(const ParamSpace& a, const ParamSpace& b);
 // space's order; parse_technique_spec makes it canonical).
 std::string space_point(const ParamSpace& space, size_t i);
 
+// tune's spaces without --space: per technique of a fixed list, its keys that declare
+// a tune domain (techniques/technique_keys.h, technique_tune_space).
+std::vector<std::string> default_param_spaces();
+
 // The values of one domain text (the part after '=').
 std::vector<std::string> parse_domain(const std::string& text, const std::string& flag);
 
