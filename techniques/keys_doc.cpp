@@ -78,7 +78,7 @@ std::string technique_keys_markdown() {
       "declarations (`techniques/technique_keys.h`); a test keeps it equal to the program. A "
       "spec is `NAME:key=value,...`; a key the technique does not declare is an error. Each "
       "key is read in the order of its table, and its range and rules are checked as it is read.\n\n"
-      "A light-map technique is a layout letter + a filter: " + technique_naming_text() +
+      "A light-map technique's name is " + technique_naming_text() +
       ". Each filter's table shows it on the cube layout (`c`); the lines under it give what "
       "the other layouts change.\n\n"
       "## rt\n\n" + technique_what("rt", "--list-keys") + ".\n\n" +
