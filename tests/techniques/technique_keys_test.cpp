@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/parse_number.h"
+#include "techniques/map_filter.h"
 #include "techniques/map_params.h"
 #include "techniques/ray_traced.h"
 #include "techniques/technique.h"
@@ -18,21 +19,17 @@
 namespace shadowlab {
 namespace {
 
-// The test's own reading of the naming rule: layout letter + filter suffix.
+// The naming rule: a layout letter + the suffix of a filter of map_filters().
 bool layout_filter(const std::string& name, FaceLayoutKind& layout, MapFilter& filter) {
   const std::pair<char, FaceLayoutKind> layouts[] = {{'c', FaceLayoutKind::Cube},
                                                      {'t', FaceLayoutKind::Tetrahedron},
                                                      {'p', FaceLayoutKind::Projector},
                                                      {'d', FaceLayoutKind::DualParaboloid}};
-  const std::pair<const char*, MapFilter> filters[] = {
-      {"sm", MapFilter::Depth},          {"vsm", MapFilter::Variance},
-      {"esm", MapFilter::Exponential},   {"evsm", MapFilter::ExponentialVariance},
-      {"msm", MapFilter::Moment},        {"pcss", MapFilter::Pcss}};
   bool found_layout = false, found_filter = false;
   for (const auto& [c, l] : layouts)
     if (name[0] == c) layout = l, found_layout = true;
-  for (const auto& [s, f] : filters)
-    if (name.substr(1) == s) filter = f, found_filter = true;
+  for (const MapFilterOps* f : map_filters())
+    if (name.substr(1) == f->suffix) filter = f->id, found_filter = true;
   return found_layout && found_filter;
 }
 
