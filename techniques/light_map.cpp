@@ -68,7 +68,7 @@ const std::vector<const MapFilterOps*>& map_filters() {
   static const std::vector<const MapFilterOps*> rows = {&kDepthCompare, &kVarianceMap,
                                                         &kExponentialMap,
                                                         &kExponentialVarianceMap,
-                                                        &kMomentShadowMap, &kPcss, &kHardMap};
+                                                        &kMomentShadowMap, &kPcss};
   return rows;
 }
 

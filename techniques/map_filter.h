@@ -52,7 +52,6 @@ extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
 extern const MapFilterOps kExponentialVarianceMap;  // evsm: exponential variance shadow map
 extern const MapFilterOps kMomentShadowMap;  // msm: moment shadow map
 extern const MapFilterOps kPcss;             // pcss: percentage-closer soft shadows
-extern const MapFilterOps kHardMap;          // hsm: hard shadow map
 
 // MapFilterOps::by_tiles of a filter that goes by tiles under any params.
 inline bool map_filter_always_by_tiles(const MapParams&) { return true; }

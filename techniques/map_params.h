@@ -18,7 +18,7 @@
 
 namespace shadowlab {
 
-enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment, Pcss, Hard };
+enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment, Pcss };
 
 // How taps near a face's edge read their texels.
 //   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
@@ -79,10 +79,6 @@ struct PcssKeys {
   bool model{};          // the penumbra from techniques/penumbra_model.h, not the mean blocker
 };
 
-struct HsmKeys {
-  double shade{};  // visibility of a shadowed receiver
-};
-
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
   MapFilter filter = MapFilter::Depth;
@@ -108,7 +104,6 @@ struct MapParams {
   EvsmKeys evsm;
   MsmKeys msm;
   PcssKeys pcss;
-  HsmKeys hsm;
 };
 
 using MapKey = KeyDecl<MapParams>;
