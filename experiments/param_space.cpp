@@ -26,7 +26,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
   }
 }
 
-// A computed value as text (README "Tuning"): whole numbers below 1e15 exactly, others to 4
+// A computed value as text: whole numbers below 1e15 exactly, others to 4
 // significant digits; an exponent is written without '+' ("1e18"; specs refuse '+').
 std::string value_text(double v) {
   if (v == std::round(v) && std::fabs(v) < 1e15) return fmt::format("{:.0f}", v);

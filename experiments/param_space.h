@@ -1,7 +1,7 @@
 #pragma once
 // Parameter spaces of the tuner (experiments/tuner.h): one technique and a domain per key,
 //   "csm:res=256..2048/x2,pcf=1|3|5,bias=0.001..0.05/log6"
-// Domains (README "Tuning"):
+// Domains:
 //   V              one value;
 //   V1|V2|…        a list (no repeats);
 //   A..B/S         A, A+S, …, B (S > 0; B − A must be a whole number of steps);
