@@ -146,6 +146,11 @@ std::string SpecReader::get_choice(const std::string& key, const std::string& fa
 
 bool SpecReader::has(const std::string& key) const { return spec_.params.count(key) > 0; }
 
+bool SpecReader::gives(const std::string& key, const std::string& word) const {
+  const auto it = spec_.params.find(key);
+  return it != spec_.params.end() && it->second == word;
+}
+
 bool SpecReader::is_word(const std::string& key, const std::string& word) {
   used_.push_back(key);
   const auto it = spec_.params.find(key);

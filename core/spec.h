@@ -51,6 +51,8 @@ class SpecReader {
                          const std::vector<std::string>& choices);
   // True when the spec gives `key` (whatever its value; does not mark it used).
   bool has(const std::string& key) const;
+  // True when `key` is given as exactly `word`, without marking it used.
+  bool gives(const std::string& key, const std::string& word) const;
   // True when `key` is given as exactly `word` (e.g. "light_size=light"); marks it used.
   bool is_word(const std::string& key, const std::string& word);
   void reject_unknown() const;

@@ -1,5 +1,6 @@
 #include "experiments/cli.h"
 #include "experiments/environment.h"
+#include "experiments/param_space.h"
 #include "experiments/provenance.h"
 #include "experiments/view_check.h"
 
@@ -113,6 +114,17 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+// docs/techniques/keys.md: the registry's key tables, then tune's default spaces.
+static std::string keys_markdown() {
+  std::string s = technique_keys_markdown() +
+                  "\n## tune's default spaces\n\n"
+                  "Without `--space`, `tune` searches these spaces: each technique's keys that declare "
+                  "a domain (the column \"tune searches\" above; experiments/param_space.h gives the "
+                  "syntax).\n\n";
+  for (const std::string& space : default_param_spaces()) s += "- `" + space + "`\n";
+  return s;
+}
+
 // The programs --from repeats: their JSON outputs record the command (experiments/provenance.h).
 const std::string kRepeatable[] = {"render", "resolution_sweep", "tune"};
 
@@ -122,10 +134,12 @@ CommandLine make_command_line(const std::string& program, const std::string& syn
   cl.app = std::make_shared<CLI::App>(program + " " + synopsis, program);
   CLI::App& app = *cl.app;
   app.set_help_flag("--help", "print this help (with the technique registry)");
-  // run_main answers these two before parsing; listed here for --help.
+  // run_main answers these three before parsing; listed here for --help.
   const std::string list_help = "print every technique with its keys and defaults, then exit";
+  const std::string keys_help = "print every technique's key table (markdown: docs/techniques/keys.md), then exit";
   const std::string version_help = "print the program, shadowlab's commit and the compiler, then exit";
   app.add_flag("--list-techniques", list_help);
+  app.add_flag("--list-keys", keys_help);
   app.add_flag("--version", version_help);
   // run_main replaces --from FILE by the recorded arguments before parsing, for the programs
   // whose outputs record their command (kRepeatable).
@@ -522,6 +536,10 @@ int run_main(int argc, char** argv, const std::function<int(int, char**)>& body)
     for (int i = 1; i < argc; ++i) {
       if (std::string(argv[i]) == "--list-techniques") {
         std::printf("%s", technique_list_text().c_str());
+        return 0;
+      }
+      if (std::string(argv[i]) == "--list-keys") {
+        std::printf("%s", keys_markdown().c_str());
         return 0;
       }
       if (std::string(argv[i]) == "--version") {

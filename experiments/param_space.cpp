@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/spec.h"
 #include "core/parse_number.h"
+#include "techniques/technique.h"
 
 namespace shadowlab {
 namespace {
@@ -25,7 +26,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
   }
 }
 
-// A computed value as text (docs/programs/tune.md): whole numbers below 1e15 exactly, others to 4
+// A computed value as text: whole numbers below 1e15 exactly, others to 4
 // significant digits; an exponent is written without '+' ("1e18"; specs refuse '+').
 std::string value_text(double v) {
   if (v == std::round(v) && std::fabs(v) < 1e15) return fmt::format("{:.0f}", v);
@@ -194,6 +195,15 @@ bool same_space(const ParamSpace& a, const ParamSpace& b) {
       return false;
   }
   return true;
+}
+
+std::vector<std::string> default_param_spaces() {
+  // Depth compare on the three layouts that cover every direction, and every filter on the cube.
+  static const char* const kDefaultTuneTechniques[] = {"csm", "tsm", "dsm", "cvsm", "cesm",
+                                                       "cevsm", "cmsm", "cpcss"};
+  std::vector<std::string> out;
+  for (const char* name : kDefaultTuneTechniques) out.push_back(technique_tune_space(name, "--space"));
+  return out;
 }
 
 std::string space_point(const ParamSpace& space, size_t i) {

@@ -1,7 +1,7 @@
 #pragma once
 // Parameter spaces of the tuner (experiments/tuner.h): one technique and a domain per key,
 //   "csm:res=256..2048/x2,pcf=1|3|5,bias=0.001..0.05/log6"
-// Domains (docs/programs/tune.md):
+// Domains:
 //   V              one value;
 //   V1|V2|…        a list (no repeats);
 //   A..B/S         A, A+S, …, B (S > 0; B − A must be a whole number of steps);
@@ -42,6 +42,10 @@ bool same_space(const ParamSpace& a, const ParamSpace& b);
 // The point with odometer index i (last key fastest) as spec text "name:k=v,…" (keys in the
 // space's order; parse_technique_spec makes it canonical).
 std::string space_point(const ParamSpace& space, size_t i);
+
+// tune's spaces without --space: per technique of a fixed list, its keys that declare
+// a tune domain (techniques/technique_keys.h, technique_tune_space).
+std::vector<std::string> default_param_spaces();
 
 // The values of one domain text (the part after '=').
 std::vector<std::string> parse_domain(const std::string& text, const std::string& flag);

@@ -1,5 +1,5 @@
 // tune: the best technique and settings for a scene (or a suite) and a time or bytes budget,
-// searched over parameter spaces (docs/programs/tune.md); --shard i/N evaluates one deterministic
+// searched over parameter spaces (experiments/param_space.h); --shard i/N evaluates one deterministic
 // share, which build/experiments/merge combines.
 #include <cstdio>
 
@@ -17,13 +17,6 @@
 using namespace shadowlab;
 
 namespace {
-
-// Used when no --space is given (docs/programs/tune.md): every filter on the cube layout,
-// the tetrahedral and dual-paraboloid depth compare, over resolution and each filter's own key.
-const std::vector<std::string> kDefaultSpaces = {
-    "csm:res=256..2048/x2,pcf=1|3|5", "tsm:res=256..2048/x2,pcf=1|3", "dsm:res=512..2048/x2",
-    "cvsm:res=256..1024/x2,blur=3|5", "cesm:res=256..1024/x2,blur=3|5",
-    "cevsm:res=256..1024/x2,moments=2|4", "cmsm:res=256..1024/x2", "cpcss:res=256..1024/x2"};
 
 void parse_weights(const std::string& s, MetricWeights& w) {
   for (const std::string& item : split_spec_list("w:" + s)) {
@@ -52,7 +45,7 @@ int main(int argc, char** argv) {
     std::optional<int> spp, repeats, max_evals;
     bool quick = false, no_cache = false, references_only = false;
     std::vector<double> budgets_ms = {2, 4, 8, 16, 32}, budgets_bytes;
-    add_text_repeated(cl, "--space", "SPEC", "a technique's parameter space, e.g. csm:res=256..2048/x2,pcf=1|3|5 (repeatable; docs/programs/tune.md gives the syntax; default: the eight spaces listed there)", spaces);
+    add_text_repeated(cl, "--space", "SPEC", "a technique's parameter space, e.g. csm:res=256..2048/x2,pcf=1|3|5 (repeatable; default: the spaces of --list-keys' last section)", spaces);
     add_double_list(cl, "--budget-ms", "LIST", "shadow-time budgets in ms (default 2,4,8,16,32)", budgets_ms, 1e-6, 1e9);
     add_double_list(cl, "--budget-bytes", "LIST", "map-bytes-touched budgets in bytes, e.g. 4e6,16e6 (default: none)", budgets_bytes, 1.0, 1e18);
     add_text(cl, "--objective", "NAME", "what to maximize: total, fidelity, aesthetics, detail, ssim, psnr, c10, c50, c90, dark, lit, acne, noise or flip (1 - mean FLIP of the masks) (default total)", objective);
@@ -84,7 +77,7 @@ int main(int argc, char** argv) {
     c.cache_dir = no_cache ? "" : default_cache_dir();
     c.progress = stderr_is_terminal();
     c.max_memory = max_memory_bytes(common);
-    for (const std::string& s : spaces.empty() ? kDefaultSpaces : spaces)
+    for (const std::string& s : spaces.empty() ? default_param_spaces() : spaces)
       c.spaces.push_back(parse_param_space(s, "--space"));
     std::vector<Scene> scenes;
     if (!suite.empty()) {

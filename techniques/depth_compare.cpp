@@ -16,39 +16,56 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace sm_filter {
 namespace {
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  p.pcf = r.get_int("pcf", p.pcf, 1, 15);
-  if (p.pcf > 1 && p.pcf % 2 == 0)
-    throw InputError(flag, name + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
-  const bool poisson = r.get_choice("pcf_kind", "grid", {"grid", "poisson"}) == "poisson";
-  if (poisson) {
-    p.pcf_kind = PcfKind::Poisson;
-    p.taps = r.get_int("taps", p.taps, 4, 64);
-    if (p.pcf < 3)
-      throw InputError(flag, name + ": 'pcf_kind=poisson' needs pcf >= 3 (the disk's diameter in texels)");
-  }
-  // Poisson taps rotate freely, so they read through the guard band (the cube's cross-face
-  // lookup serves the grid's texel rows).
-  // rpdb's plane gradient lives in the receiver's own face: it takes the guard band too.
-  read_rpdb(r, name, flag, p);
-  const std::string seams =
-      r.get_choice("seams", p.seams == SeamMode::Cross && !poisson && !p.rpdb ? "cross" : "guard",
-                   {"guard", "cross"});
-  if (poisson && seams == "cross")
-    throw InputError(flag, name + ": 'seams=cross' serves the grid PCF only; Poisson taps use the guard band");
-  if (p.rpdb && seams == "cross")
-    throw InputError(flag, name + ": 'rpdb=1' needs the guard band ('seams=guard'): the plane "
-                                  "gradient is in the receiver's own face");
-  p.seams = seams == "cross" ? SeamMode::Cross : SeamMode::Guard;
+// Poisson taps rotate freely, so they read through the guard band (the cube's cross-face lookup
+// serves the grid's texel rows); rpdb's plane gradient lives in the receiver's own face: it
+// takes the guard band too. Without seams given, both switch the cube's default to the guard.
+void check_seams(const KeyCheck& c, MapParams& p) {
+  const bool poisson = p.pcf_kind == PcfKind::Poisson;
+  if (!c.value.given && (poisson || p.rpdb)) p.seams = SeamMode::Guard;
+  if (poisson && p.seams == SeamMode::Cross)
+    throw InputError(c.flag, c.name + ": 'seams=cross' serves the grid PCF only; Poisson taps use the guard band");
+  if (p.rpdb && p.seams == SeamMode::Cross)
+    throw InputError(c.flag, c.name + ": 'rpdb=1' needs the guard band ('seams=guard'): the plane "
+                                      "gradient is in the receiver's own face");
 }
 
-std::string keys_text(const MapParams& p) {
-  return std::string("pcf=1,seams=") + (p.seams == SeamMode::Cross ? "cross" : "guard") +
-         ",pcf_kind=grid,taps=" + std::to_string(p.taps) + ",rpdb=0";
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      {.name = "pcf", .type = KeyType::Integer, .def = 1, .lo = 1, .hi = 15,
+       .help = "1: the nearest texel; odd N >= 3: N×N bilinear-weighted taps (grid) or the "
+               "diameter in texels of the Poisson disk",
+       .tune = "1|3|5",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcf = int(v.number); },
+       .check = [](const KeyCheck& c, MapParams& p) {
+         if (p.pcf > 1 && p.pcf % 2 == 0)
+           throw InputError(c.flag, c.name + ": 'pcf' must be 1 or odd, got " + std::to_string(p.pcf));
+       }},
+      {.name = "pcf_kind", .type = KeyType::Choice, .def_word = "grid", .choices = "grid|poisson",
+       .help = "the PCF footprint: the N×N grid, or Poisson-disk taps rotated per pixel (needs pcf >= 3)",
+       .store = [](MapParams& p, const KeyValue& v) {
+         p.pcf_kind = v.word == "poisson" ? PcfKind::Poisson : PcfKind::Grid;
+       }},
+      {.name = "taps", .type = KeyType::Integer, .def = 16, .lo = 4, .hi = 64,
+       .help = "Poisson taps per pixel", .needs = "pcf_kind=poisson",
+       .store = [](MapParams& p, const KeyValue& v) { p.taps = int(v.number); },
+       .check = [](const KeyCheck& c, MapParams& p) {
+         if (p.pcf < 3)
+           throw InputError(c.flag, c.name + ": 'pcf_kind=poisson' needs pcf >= 3 (the disk's diameter in texels)");
+       }},
+      map_rpdb_key(),
+      {.name = "seams", .type = KeyType::Choice, .def_word = "guard", .choices = "guard|cross",
+       .help = "taps beyond a face's image: read in a guard band rendered around each face, or "
+               "looked up through their direction in the neighbouring face (grid PCF without rpdb)",
+       .store = [](MapParams& p, const KeyValue& v) {
+         p.seams = v.word == "cross" ? SeamMode::Cross : SeamMode::Guard;
+       },
+       .check = check_seams},
+  };
+  return k;
 }
 
 // Rotated Poisson PCF at receiver r: taps at st + (pcf/2)·R(θ)·q_k, θ from the pixel's counter-
@@ -209,7 +226,7 @@ uint64_t stored_planes(const MapParams&) { return 0; }
 
 const MapFilterOps kDepthCompare = {
     "sm", "shadow map, depth compare with PCF", MapFilter::Depth,
-    sm_filter::parse_keys, sm_filter::keys_text, sm_filter::filter, sm_filter::lookup,
+    sm_filter::keys, sm_filter::filter, sm_filter::lookup,
     sm_filter::taps_per_lookup, sm_filter::tap_bytes, sm_filter::stored_planes, nullptr, false};
 
 }  // namespace shadowlab

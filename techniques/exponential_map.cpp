@@ -18,18 +18,20 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace esm_filter {
 namespace {
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  read_blur(r, name, flag, p);
-  // exp(c·Δ) with Δ <= 1 must stay below DBL_MAX (ln ≈ 709.8) in the filter; see moment_filter.h.
-  p.esm.c = r.get_double("c", p.esm.c, 0.01, 700.0);
-}
-
-std::string keys_text(const MapParams& p) {
-  return fmt::format("blur={},c={:g}", p.blur, p.esm.c);
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      [] { MapKey b = map_blur_key(); b.tune = "3|5"; return b; }(),
+      // exp(c·Δ) with Δ <= 1 must stay below DBL_MAX (ln ≈ 709.8) in the filter; see moment_filter.h.
+      {.name = "c", .type = KeyType::Number, .def = 200.0, .lo = 0.01, .hi = 700.0,
+       .help = "exponent on the normalised distance (|p - L| / far); the log-space filter "
+               "allows any c <= 700",
+       .store = [](MapParams& p, const KeyValue& v) { p.esm.c = v.number; }},
+  };
+  return k;
 }
 
 void filter(const MapParams& p, LightMap& map) {
@@ -159,7 +161,7 @@ uint64_t stored_planes(const MapParams&) { return 1; }
 
 const MapFilterOps kExponentialMap = {
     "esm", "exponential shadow map", MapFilter::Exponential,
-    esm_filter::parse_keys, esm_filter::keys_text, esm_filter::filter, esm_filter::lookup,
+    esm_filter::keys, esm_filter::filter, esm_filter::lookup,
     esm_filter::taps_per_lookup, esm_filter::tap_bytes, esm_filter::stored_planes,
     map_filter_always_by_tiles, true};
 

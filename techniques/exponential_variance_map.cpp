@@ -22,37 +22,45 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace evsm_filter {
 namespace {
 
 // The largest exponent whose square e^(2c) is still finite in float: ln(FLT_MAX)/2.
 constexpr double kMaxExponent = 44.36;
 
-double read_exponent(SpecReader& r, const std::string& name, const char* flag, const char* key,
-                     double fallback) {
-  const double c = r.get_double(key, fallback, 0.01, 1e4);
-  if (c > kMaxExponent)
-    throw InputError(flag, fmt::format("{}: '{}' = {:g} overflows the stored moments: e^(2c) "
-                                       "exceeds float's range above c = {:g}",
-                                       name, key, c, kMaxExponent));
-  return c;
+// An exponent in (kMaxExponent, parse_hi] is read, then refused with the reason.
+void check_exponent(const KeyCheck& c, const char* key, double value) {
+  if (value > kMaxExponent)
+    throw InputError(c.flag, fmt::format("{}: '{}' = {:g} overflows the stored moments: e^(2c) "
+                                         "exceeds float's range above c = {:g}",
+                                         c.name, key, value, kMaxExponent));
 }
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  read_blur(r, name, flag, p);
-  EvsmKeys& e = p.evsm;
-  e.moments = std::stoi(r.get_choice("moments", std::to_string(e.moments), {"2", "4"}));
-  e.c_pos = read_exponent(r, name, flag, "c_pos", e.c_pos);
-  e.c_neg = read_exponent(r, name, flag, "c_neg", e.c_neg);
-  e.min_variance = r.get_double("min_variance", e.min_variance, 0.0, 1e6);
-  e.bleed = r.get_double("bleed", e.bleed, 0.0, 0.99);
-}
-
-std::string keys_text(const MapParams& p) {
-  const EvsmKeys& e = p.evsm;
-  return fmt::format("blur={},moments={},c_pos={:g},c_neg={:g},min_variance={:g},bleed={:g}",
-                     p.blur, e.moments, e.c_pos, e.c_neg, e.min_variance, e.bleed);
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      map_blur_key(),
+      {.name = "moments", .type = KeyType::Choice, .def_word = "2", .choices = "2|4",
+       .help = "2: the positive warp e^(c_pos·d'); 4: also the negative warp −e^(−c_neg·d')",
+       .tune = "2|4",
+       .store = [](MapParams& p, const KeyValue& v) { p.evsm.moments = std::stoi(v.word); }},
+      {.name = "c_pos", .type = KeyType::Number, .def = 40.0, .lo = 0.01, .hi = kMaxExponent,
+       .parse_hi = 1e4, .help = "positive exponent (40: the fp32 default of the literature)",
+       .store = [](MapParams& p, const KeyValue& v) { p.evsm.c_pos = v.number; },
+       .check = [](const KeyCheck& c, MapParams& p) { check_exponent(c, "c_pos", p.evsm.c_pos); }},
+      {.name = "c_neg", .type = KeyType::Number, .def = 5.0, .lo = 0.01, .hi = kMaxExponent,
+       .parse_hi = 1e4, .help = "negative exponent",
+       .store = [](MapParams& p, const KeyValue& v) { p.evsm.c_neg = v.number; },
+       .check = [](const KeyCheck& c, MapParams& p) { check_exponent(c, "c_neg", p.evsm.c_neg); }},
+      {.name = "min_variance", .type = KeyType::Number, .def = 1e-6, .lo = 0.0, .hi = 1e6,
+       .help = "variance floor of the distance, m², carried into each warp by its slope at the "
+               "receiver",
+       .store = [](MapParams& p, const KeyValue& v) { p.evsm.min_variance = v.number; }},
+      {.name = "bleed", .type = KeyType::Number, .def = 0.0, .lo = 0.0, .hi = 0.99,
+       .help = "light-bleeding reduction, as for vsm",
+       .store = [](MapParams& p, const KeyValue& v) { p.evsm.bleed = v.number; }},
+  };
+  return k;
 }
 
 // A texel's moments are stored interleaved in map.a, as VSM's and MSM's (variance_map.cpp): the
@@ -210,7 +218,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 const MapFilterOps kExponentialVarianceMap = {
     "evsm", "exponential variance shadow map", MapFilter::ExponentialVariance,
-    evsm_filter::parse_keys, evsm_filter::keys_text, evsm_filter::filter, evsm_filter::lookup,
+    evsm_filter::keys, evsm_filter::filter, evsm_filter::lookup,
     evsm_filter::taps_per_lookup, evsm_filter::tap_bytes, evsm_filter::stored_planes,
     map_filter_always_by_tiles, false};
 

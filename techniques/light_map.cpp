@@ -122,7 +122,9 @@ uint64_t light_map_bytes(const MapParams& p, const Scene& scene) {
 
 bool light_map_needs_progress(const MapParams& p, const FaceLayout& layout) {
   const uint64_t texels = layout_texels(layout);
-  const uint64_t units = texels * (p.filter == MapFilter::Depth ? 1 : uint64_t(p.blur));
+  // A pass per texel, times the box width for the filters that blur (blur is 0 where no key
+  // declares it).
+  const uint64_t units = texels * uint64_t(std::max(p.blur, 1));
   return units > 1000000000ull;  // ~2 s at ~2 ns per unit
 }
 

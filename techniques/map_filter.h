@@ -1,10 +1,11 @@
 #pragma once
 // A filter of the light-map pipeline (techniques/light_map.h): what a technique adds to a layout.
-// Each filter's row below is defined in its own file (depth_compare.cpp, variance_map.cpp,
-// exponential_map.cpp, exponential_variance_map.cpp, moment_shadow_map.cpp, pcss.cpp): its own
-// keys, its store + blur stage and its lookup; the shared row kernels live in moment_filter.h and
-// the vector lookups in map_lookup_simd.h. The registry (techniques/technique.cpp) combines every
-// layout with every row of map_filters().
+// Each filter lives in one file that defines its row below: its own keys, its store + blur stage
+// and its lookup (depth_compare.cpp, variance_map.cpp, exponential_map.cpp,
+// exponential_variance_map.cpp, moment_shadow_map.cpp, pcss.cpp). The registry
+// (techniques/technique.cpp) combines every layout with every row of map_filters(), so a new
+// filter is its file, a field in MapParams for its keys, one line in map_filters() and one enum
+// value (docs/extending.md).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,17 +24,16 @@ struct MapFilterOps {
   const char* suffix;  // the technique name's filter part: c + "vsm" = cvsm
   const char* what;    // one line for --list-techniques
   MapFilter id;
-  // Reads the filter's own keys into p (the shared keys are read by parse_map_params).
-  void (*parse_keys)(SpecReader& r, const std::string& name, const char* flag, MapParams& p);
-  // "key=default,…" of the filter's own keys, from the defaults in p.
-  std::string (*keys_text)(const MapParams& p);
+  // The filter's own keys in reading order (techniques/technique_keys.h); map_keys puts the
+  // shared and the layout's keys before them.
+  const std::vector<MapKey>& (*keys)();
   // Stages 4–5: the filter's transform and blur of the rendered faces into map.a/max_depth
   // (only map.tiles' tiles when by_tiles says so and map.tiles is not empty).
   void (*filter)(const MapParams& p, LightMap& map);
   // Stage 6: every GBuffer pixel's visibility (and texel index when texels is given).
   void (*lookup)(const Scene& scene, const GBuffer& g, const MapParams& p, const LightMap& map,
                  ImageF& mask, ImageU32* texels);
-  // Work counts (docs/metric.md): map texels one lookup reads, the bytes per such tap,
+  // Work counts (WorkCounts, techniques/technique.h): map texels one lookup reads, the bytes per such tap,
   // and the float planes the filter stores per texel.
   uint64_t (*taps_per_lookup)(const MapParams& p);
   uint64_t (*tap_bytes)(const MapParams& p);

@@ -1,6 +1,7 @@
 #include "techniques/map_params.h"
 
 #include <cstdio>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -9,75 +10,143 @@
 
 namespace shadowlab {
 
+namespace {
+
+MapKey* find_key(std::vector<MapKey>& keys, const char* name) {
+  for (MapKey& k : keys)
+    if (std::string(k.name) == name) return &k;
+  return nullptr;
+}
+
+// depth_format_names() as a Choice's "a|b|c".
+const char* depth_choices() {
+  static const std::string text = [] {
+    std::string s;
+    for (const std::string& n : depth_format_names()) s += (s.empty() ? "" : "|") + n;
+    return s;
+  }();
+  return text.c_str();
+}
+
+// Keys every light-map technique reads, first, in this order.
+std::vector<MapKey> shared_keys() {
+  return {
+      {.name = "res", .type = KeyType::Integer, .def = 512, .lo = 1, .hi = 4096,
+       .help = "map resolution: the cube face's edge in texels (tetrahedral: ~6·res² texels in "
+               "all; dual-paraboloid: ~3·res² per hemisphere; projector: the face's height)",
+       .tune = "256..1024/x2",
+       .store = [](MapParams& p, const KeyValue& v) { p.res = int(v.number); }},
+      {.name = "bias", .type = KeyType::Number, .def = 0.01, .lo = 0.0, .hi = 1e3,
+       .help = "constant depth bias, m, subtracted from the receiver's radial distance",
+       .store = [](MapParams& p, const KeyValue& v) { p.bias = float(v.number); }},
+      {.name = "slope", .type = KeyType::Number, .def = 1.0, .lo = 0.0, .hi = 1e3,
+       .help = "slope-scaled bias: × texel size at the receiver × tan(angle to the light) "
+               "(tan <= 10) × the filter's reach",
+       .store = [](MapParams& p, const KeyValue& v) { p.slope = float(v.number); }},
+      {.name = "normal", .type = KeyType::Number, .def = 0.0, .lo = 0.0, .hi = 1e3,
+       .help = "normal offset: the lookup point moves along the geometric normal by normal × "
+               "texel size × (1 - N·L)",
+       .store = [](MapParams& p, const KeyValue& v) { p.normal = float(v.number); }},
+      {.name = "depth", .type = KeyType::Choice, .def_word = "f32", .choices = depth_choices(),
+       .help = "stored precision of the distances, quantized before any filtering "
+               "(techniques/depth_quantize.h)",
+       .store = [](MapParams& p, const KeyValue& v) { p.depth = depth_format_from_name(v.word); }},
+  };
+}
+
+// Split pieces have images of at most tess texels, so a face of E² texels ends with about
+// 2·E²/tess² of them (plus the input triangles): bounded before any work (32M pieces, ~1.2 GB
+// of vertices per face).
+void check_tess(const KeyCheck& c, MapParams& p) {
+  const double e = double(paraboloid_face_edge(p.res));
+  const double pieces = p.tess > 0 ? 2.0 * e * e / (double(p.tess) * double(p.tess)) : 0.0;
+  if (pieces > 3.2e7)
+    throw InputError(c.flag, fmt::format("{}: 'tess={}' at res={} would split each face into ~{:.0f}M "
+                                         "triangles (limit 32M): raise tess or lower res",
+                                         c.name, p.tess, p.res, pieces / 1e6));
+}
+
+// Keys a layout adds after the shared ones.
+std::vector<MapKey> layout_keys(FaceLayoutKind layout) {
+  if (layout != FaceLayoutKind::DualParaboloid) return {};
+  return {{.name = "tess", .type = KeyType::Integer, .def = 0, .lo = 0, .hi = 4096,
+           .help = "split triangles whose image has an edge longer than tess texels before the "
+                   "paraboloid projection (0: off)",
+           .store = [](MapParams& p, const KeyValue& v) { p.tess = int(v.number); },
+           .check = check_tess}};
+}
+
+}  // namespace
+
+MapKey map_blur_key() {
+  return {.name = "blur", .type = KeyType::Integer, .def = 3, .lo = 1, .hi = 63,
+          .help = "separable box filter width, texels, odd (1: none)",
+          .store = [](MapParams& p, const KeyValue& v) { p.blur = int(v.number); },
+          .check = [](const KeyCheck& c, MapParams& p) {
+            if (p.blur % 2 == 0)
+              throw InputError(c.flag, c.name + ": 'blur' must be odd, got " + std::to_string(p.blur));
+          }};
+}
+
+MapKey map_rpdb_key() {
+  return {.name = "rpdb", .type = KeyType::Flag, .def = 0,
+          .help = "receiver-plane depth bias: each tap compares with the receiver plane's depth "
+                  "at the tap (techniques/map_receiver.h) instead of the slope term; needs the "
+                  "guard band",
+          .store = [](MapParams& p, const KeyValue& v) { p.rpdb = v.number != 0.0; },
+          .check = [](const KeyCheck& c, MapParams& p) {
+            if (!p.rpdb) return;
+            if (c.reader.has("slope") && p.slope > 0.0f)
+              throw InputError(c.flag, c.name + ": 'rpdb=1' replaces the slope bias; drop 'slope' or set it to 0");
+            p.slope = 0.0f;
+          }};
+}
+
+std::vector<MapKey> map_keys(FaceLayoutKind layout, MapFilter filter) {
+  std::vector<MapKey> keys = shared_keys();
+  for (MapKey& k : layout_keys(layout)) keys.push_back(std::move(k));
+  for (const MapKey& k : map_filter_ops(filter).keys()) keys.push_back(k);
+  // The rules of a layout × filter pair, each stated once:
+  // the filtering techniques take no bias: the filter absorbs a surface's own depth variation;
+  // pcss compares depths like depth compare and keeps the constant bias, but its wide kernels
+  // take the receiver-plane depth bias (rpdb=1) instead of the slope term.
+  if (filter != MapFilter::Depth) find_key(keys, "slope")->def = 0.0;
+  if (filter != MapFilter::Depth && filter != MapFilter::Pcss) find_key(keys, "bias")->def = 0.0;
+  if (filter == MapFilter::Depth) {
+    MapKey& res = *find_key(keys, "res");
+    res.tune = layout == FaceLayoutKind::DualParaboloid ? "512..2048/x2" : "256..2048/x2";
+    if (layout == FaceLayoutKind::Tetrahedron) find_key(keys, "pcf")->tune = "1|3";
+    if (layout == FaceLayoutKind::DualParaboloid) find_key(keys, "pcf")->tune = "";
+  }
+  // The cube depth map goes to 8192 (6 × 256 MiB); the other layouts and the filters, whose
+  // scratch is double precision, stop at 4096. The cube's depth compare reads taps beyond a face
+  // in the neighbouring face by default; the other layouts use guard bands.
+  if (layout == FaceLayoutKind::Cube && filter == MapFilter::Depth) {
+    find_key(keys, "res")->hi = 8192;
+    find_key(keys, "seams")->def_word = "cross";
+  }
+  return keys;
+}
+
 MapParams default_map_params(FaceLayoutKind layout, MapFilter filter) {
   MapParams p;
   p.layout = layout;
   p.filter = filter;
-  // PCSS compares depths like depth compare and keeps its constant bias; its wide kernels take
-  // the receiver-plane depth bias by default instead of the slope term (README "PCSS").
-  if (filter != MapFilter::Depth && filter != MapFilter::Pcss) p.bias = p.slope = 0.0f;
-  if (filter == MapFilter::Pcss) {
-    p.rpdb = true;
-    p.slope = 0.0f;
-  }
-  // csm always looked taps beyond a face up in the neighbouring face; the other layouts were
-  // built with guard bands. Both stay the default of their layout (README: seams).
-  p.seams = filter == MapFilter::Depth && layout == FaceLayoutKind::Cube ? SeamMode::Cross
-                                                                          : SeamMode::Guard;
+  store_defaults(map_keys(layout, filter), p);
   return p;
 }
 
 MapParams parse_map_params(const TechniqueSpec& spec, FaceLayoutKind layout, MapFilter filter,
                            const char* flag) {
-  MapParams p = default_map_params(layout, filter);
-  const std::string& n = spec.name;
+  MapParams p;
+  p.layout = layout;
+  p.filter = filter;
+  const std::vector<MapKey> keys = map_keys(layout, filter);
+  store_defaults(keys, p);
   SpecReader r(spec, flag);
-  // The cube depth map always went to 8192 (6 × 256 MiB); the other layouts and the filters,
-  // whose scratch is double precision, stop at 4096.
-  const bool cube_depth = layout == FaceLayoutKind::Cube && filter == MapFilter::Depth;
-  p.res = r.get_int("res", p.res, 1, cube_depth ? 8192 : 4096);
-  p.bias = float(r.get_double("bias", p.bias, 0.0, 1e3));
-  p.slope = float(r.get_double("slope", p.slope, 0.0, 1e3));
-  p.normal = float(r.get_double("normal", p.normal, 0.0, 1e3));
-  p.depth = depth_format_from_name(r.get_choice("depth", "f32", depth_format_names()));
-  if (layout == FaceLayoutKind::DualParaboloid) {
-    p.tess = r.get_int("tess", p.tess, 0, 4096);
-    // Split pieces have images of at most tess texels, so a face of E² texels ends with about
-    // 2·E²/tess² of them (plus the input triangles): bound that before any work (32M pieces,
-    // ~1.2 GB of vertices per face).
-    const double e = double(paraboloid_face_edge(p.res));
-    const double pieces = p.tess > 0 ? 2.0 * e * e / (double(p.tess) * double(p.tess)) : 0.0;
-    if (pieces > 3.2e7)
-      throw InputError(flag, fmt::format("{}: 'tess={}' at res={} would split each face into ~{:.0f}M "
-                                         "triangles (limit 32M): raise tess or lower res",
-                                         n, p.tess, p.res, pieces / 1e6));
-  }
-  // The filter's own keys (techniques/map_filter.h).
-  map_filter_ops(filter).parse_keys(r, n, flag, p);
+  read_keys(r, spec.name, flag, keys, p);
   r.reject_unknown();
   return p;
-}
-
-std::string map_keys_text(FaceLayoutKind layout, MapFilter filter) {
-  const MapParams p = default_map_params(layout, filter);
-  return fmt::format("res={},bias={:g},slope={:g},normal={:g},depth=f32,{}", p.res,
-                     double(p.bias), double(p.slope), double(p.normal),
-                     layout == FaceLayoutKind::DualParaboloid ? "tess=0," : "") +
-         map_filter_ops(filter).keys_text(p);
-}
-
-void read_blur(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  p.blur = r.get_int("blur", p.blur, 1, 63);
-  if (p.blur % 2 == 0)
-    throw InputError(flag, name + ": 'blur' must be odd, got " + std::to_string(p.blur));
-}
-
-void read_rpdb(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  p.rpdb = r.get_bool("rpdb", p.rpdb);
-  if (!p.rpdb) return;
-  if (r.has("slope") && p.slope > 0.0f)
-    throw InputError(flag, name + ": 'rpdb=1' replaces the slope bias; drop 'slope' or set it to 0");
-  p.slope = 0.0f;
 }
 
 int map_guard(const MapParams& p) {

@@ -22,22 +22,29 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace msm_filter {
 namespace {
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  read_blur(r, name, flag, p);
-  MsmKeys& m = p.msm;
-  m.hausdorff = r.get_choice("variant", m.hausdorff ? "hausdorff" : "hamburger",
-                             {"hamburger", "hausdorff"}) == "hausdorff";
-  m.quantize16 = r.get_bool("quantize16", m.quantize16);
-  m.alpha = r.get_double("alpha", m.quantize16 ? 3e-5 : m.alpha, 0.0, 0.5);
-}
-
-std::string keys_text(const MapParams& p) {
-  return fmt::format("blur={},variant={},alpha={:g},quantize16=0", p.blur,
-                     p.msm.hausdorff ? "hausdorff" : "hamburger", p.msm.alpha);
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      map_blur_key(),
+      {.name = "variant", .type = KeyType::Choice, .def_word = "hamburger",
+       .choices = "hamburger|hausdorff",
+       .help = "the moment problem's support: hamburger (ℝ) or hausdorff ([0, 1])",
+       .store = [](MapParams& p, const KeyValue& v) { p.msm.hausdorff = v.word == "hausdorff"; }},
+      {.name = "quantize16", .type = KeyType::Flag, .def = 0,
+       .help = "store 4 × 16 bits (the optimized quantization) instead of 4 × fp32",
+       .store = [](MapParams& p, const KeyValue& v) { p.msm.quantize16 = v.number != 0.0; }},
+      {.name = "alpha", .type = KeyType::Number, .def = 3e-6, .lo = 0.0, .hi = 0.5,
+       .help = "moment bias toward (½, ½, ½, ½); 3e-5 by default with quantize16, whose coarser "
+               "rounding needs it",
+       .store = [](MapParams& p, const KeyValue& v) { p.msm.alpha = v.number; },
+       .check = [](const KeyCheck& c, MapParams& p) {
+         if (!c.value.given && p.msm.quantize16) p.msm.alpha = 3e-5;
+       }},
+  };
+  return k;
 }
 
 // Texels [0, n) of the interleaved moments (texel i's at m[4i + 0..3]) through the 16-bit
@@ -300,7 +307,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 const MapFilterOps kMomentShadowMap = {
     "msm", "moment shadow map (Hamburger or Hausdorff 4MSM)", MapFilter::Moment,
-    msm_filter::parse_keys, msm_filter::keys_text, msm_filter::filter, msm_filter::lookup,
+    msm_filter::keys, msm_filter::filter, msm_filter::lookup,
     msm_filter::taps_per_lookup, msm_filter::tap_bytes, msm_filter::stored_planes,
     map_filter_always_by_tiles, false};
 

@@ -22,24 +22,33 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace pcss_filter {
 namespace {
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  PcssKeys& k = p.pcss;
-  // "light" (the default) is the scene light's radius, known only at lookup.
-  if (!r.is_word("light_size", "light")) k.light_size = r.get_double("light_size", k.light_size, 0.0, 100.0);
-  k.search = r.get_int("search", k.search, 1, 256);
-  k.taps = r.get_int("taps", k.taps, 1, 256);
-  k.search_near = r.get_double("search_near", k.search_near, 0.01, 0.99);
-  k.model = r.get_choice("estimate", "classic", {"classic", "model"}) == "model";
-  read_rpdb(r, name, flag, p);
-}
-
-std::string keys_text(const MapParams& p) {
-  return fmt::format("light_size=light,search={},taps={},search_near={:g},estimate=classic,rpdb=1",
-                     p.pcss.search, p.pcss.taps, p.pcss.search_near);
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      {.name = "light_size", .type = KeyType::Number, .def = -1.0, .def_word = "light", .lo = 0.0,
+       .hi = 100.0, .word = "light",
+       .help = "light radius, m; light: the scene light's radius, known only at lookup",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcss.light_size = v.number; }},
+      {.name = "search", .type = KeyType::Integer, .def = 16, .lo = 1, .hi = 256,
+       .help = "blocker-search taps (rotated Poisson disk)",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcss.search = int(v.number); }},
+      {.name = "taps", .type = KeyType::Integer, .def = 32, .lo = 1, .hi = 256,
+       .help = "PCF taps (rotated Poisson disk)",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcss.taps = int(v.number); }},
+      {.name = "search_near", .type = KeyType::Number, .def = 0.25, .lo = 0.01, .hi = 0.99,
+       .help = "nearest blocker searched for, as a fraction of the receiver's distance (sets "
+               "the search disk)",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcss.search_near = v.number; }},
+      {.name = "estimate", .type = KeyType::Choice, .def_word = "classic", .choices = "classic|model",
+       .help = "the penumbra width: classic (the mean blocker ratio) or model (the blockers' "
+               "depth range, techniques/penumbra_model.h)",
+       .store = [](MapParams& p, const KeyValue& v) { p.pcss.model = v.word == "model"; }},
+      [] { MapKey r = map_rpdb_key(); r.def = 1; return r; }(),
+  };
+  return k;
 }
 
 void filter(const MapParams&, LightMap&) {}  // the stored distances are the map
@@ -397,7 +406,7 @@ uint64_t stored_planes(const MapParams&) { return 0; }
 
 const MapFilterOps kPcss = {
     "pcss", "percentage-closer soft shadows (blocker search + Poisson PCF)", MapFilter::Pcss,
-    pcss_filter::parse_keys, pcss_filter::keys_text, pcss_filter::filter, pcss_filter::lookup,
+    pcss_filter::keys, pcss_filter::filter, pcss_filter::lookup,
     pcss_filter::taps_per_lookup, pcss_filter::tap_bytes, pcss_filter::stored_planes, nullptr, false};
 
 }  // namespace shadowlab

@@ -13,12 +13,26 @@
 
 namespace shadowlab {
 
+const std::vector<KeyDecl<RayTracedParams>>& ray_traced_keys() {
+  static const std::vector<KeyDecl<RayTracedParams>> k = {
+      {.name = "spp", .type = KeyType::Integer, .def = 256, .lo = 1, .hi = 1 << 20,
+       .help = "samples per pixel on the sphere light (stratified, per-pixel counter-based sequence)",
+       .store = [](RayTracedParams& p, const KeyValue& v) { p.spp = int(v.number); }},
+      {.name = "hard", .type = KeyType::Flag, .def = 0,
+       .help = "1: treat the light as a point (one ray per pixel) whatever its radius",
+       .store = [](RayTracedParams& p, const KeyValue& v) { p.hard = v.number != 0.0; }},
+      {.name = "seed", .type = KeyType::Integer, .def = 1, .lo = 0, .hi = 1 << 30,
+       .help = "sample-sequence seed (mixed with the scene seed)",
+       .store = [](RayTracedParams& p, const KeyValue& v) { p.seed = int(v.number); }},
+  };
+  return k;
+}
+
 RayTracedParams parse_ray_traced(const TechniqueSpec& spec, const char* flag) {
   SpecReader r(spec, flag);
   RayTracedParams p;
-  p.spp = r.get_int("spp", p.spp, 1, 1 << 20);
-  p.hard = r.get_bool("hard", p.hard);
-  p.seed = r.get_int("seed", p.seed, 0, 1 << 30);
+  store_defaults(ray_traced_keys(), p);
+  read_keys(r, spec.name, flag, ray_traced_keys(), p);
   r.reject_unknown();
   return p;
 }

@@ -19,7 +19,8 @@ namespace {
 // the flag for an unknown or bad one); `run` parses again and runs.
 struct Entry {
   std::string name;
-  std::string description;  // what it is, then "keys: k=default,…"
+  std::string what;         // what it is
+  std::vector<KeyInfo> keys;  // its declared keys, in reading order
   std::function<void(const TechniqueSpec&, const char* flag)> parse;
   std::function<ShadowResult(const TechniqueSpec&, const Scene&, const GBuffer&, const RunOptions&)> run;
   bool needs_projector = false;  // the projector layout: the scene needs --slide
@@ -48,8 +49,7 @@ struct LayoutName {
   FaceLayoutKind kind;
   const char* what;
 };
-// The naming rule (README "Techniques"): a layout letter + a filter's suffix. Every pair of a
-// layout and a filter of map_filters() (techniques/map_filter.h) is a technique.
+// The naming rule: a layout letter + a filter's suffix. Every pair of a layout and a filter of map_filters() (techniques/map_filter.h) is a technique.
 const LayoutName kLayouts[] = {
     {'c', FaceLayoutKind::Cube, "cube (6 faces of 90°)"},
     {'t', FaceLayoutKind::Tetrahedron, "tetrahedral (4 faces in quadrants of one ~6·res² texture)"},
@@ -59,7 +59,7 @@ const LayoutName kLayouts[] = {
 
 std::vector<Entry> make_registry() {
   std::vector<Entry> rows;
-  rows.push_back({"rt", "Embree ray tracing, the reference; keys: spp=256,hard=0,seed=1",
+  rows.push_back({"rt", "Embree ray tracing, the reference", key_infos(ray_traced_keys()),
                   [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
                   run_ray_traced, false,
                   [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); },
@@ -70,7 +70,8 @@ std::vector<Entry> make_registry() {
       const MapFilter filter = f->id;
       rows.push_back(
           {std::string(1, l.letter) + f->suffix,
-           std::string(f->what) + " on the " + l.what + " layout; keys: " + map_keys_text(layout, filter),
+           std::string(f->what) + " on the " + l.what + " layout",
+           key_infos(map_keys(layout, filter)),
            [layout, filter](const TechniqueSpec& s, const char* flag) {
              parse_map_params(s, layout, filter, flag);
            },
@@ -145,13 +146,28 @@ uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, cons
 
 std::vector<std::pair<std::string, std::string>> technique_list() {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const Entry& e : registry()) out.emplace_back(e.name, e.description);
+  for (const Entry& e : registry()) out.emplace_back(e.name, e.what + "; keys: " + keys_text(e.keys));
   return out;
 }
 
 std::string technique_list_text() {
   std::string s;
   for (const auto& [name, description] : technique_list()) s += "  " + name + "  " + description + "\n";
+  return s;
+}
+
+std::vector<KeyInfo> technique_keys(const std::string& name, const char* flag) {
+  return find(parse_technique_spec(name, flag), flag).keys;
+}
+
+std::string technique_what(const std::string& name, const char* flag) {
+  return find(parse_technique_spec(name, flag), flag).what;
+}
+
+std::string technique_tune_space(const std::string& name, const char* flag) {
+  std::string s = name;
+  for (const KeyInfo& k : technique_keys(name, flag))
+    if (!k.tune.empty()) s += (s == name ? ":" : ",") + k.name + "=" + k.tune;
   return s;
 }
 

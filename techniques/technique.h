@@ -9,12 +9,13 @@
 #include "core/gbuffer.h"
 #include "core/image.h"
 #include "core/scene.h"
+#include "techniques/technique_keys.h"
 #include "techniques/technique_spec.h"
 
 namespace shadowlab {
 
-// Hardware-independent work of one run (one repeat): what a comparison across machines can
-// rely on when times move 2× between machine kinds (README "Work counts").
+// Hardware-independent work of one run (one repeat): counts that stay the same on every
+// machine, where times move 2× between machine kinds.
 struct WorkCounts {
   uint64_t triangles_submitted = 0;  // triangle submissions, summed over the rendered faces
   uint64_t triangles_binned = 0;     // of them, reached binning (after culling and clipping)
@@ -79,14 +80,25 @@ void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene,
 // scratch; 0 for the ray tracer (its BVH is counted with the scene). An estimate for the
 // up-front check of experiments/memory_check.h, not a bound.
 uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, const char* flag);
-// Registered technique names with one-line descriptions (keys and defaults), for --help and
-// --list-techniques.
+// Registered technique names with one-line descriptions (keys and defaults, from the key
+// declarations), for --help and --list-techniques.
 std::vector<std::pair<std::string, std::string>> technique_list();
 // The registry as text: one line per technique, "name  description".
 std::string technique_list_text();
 // The naming rule from the registry's own tables: "a layout letter c/t/p/d + a filter
 // sm/vsm/esm/evsm/msm/pcss" (every layout with every filter is a technique).
 std::string technique_naming_text();
+// A registered technique's declared keys in reading order (techniques/technique_keys.h);
+// InputError naming flag for an unknown name.
+std::vector<KeyInfo> technique_keys(const std::string& name, const char* flag);
+// A technique's description without its keys ("shadow map, depth compare with PCF on the cube
+// (6 faces of 90°) layout").
+std::string technique_what(const std::string& name, const char* flag);
+// tune's default space of a technique: every key that declares a tune domain, in reading order
+// ("csm:res=256..2048/x2,pcf=1|3|5"; the bare name when none does).
+std::string technique_tune_space(const std::string& name, const char* flag);
+// The key tables of every technique as a markdown page (docs/techniques/keys.md).
+std::string technique_keys_markdown();
 // The layout letters and the filter suffixes, in registry order.
 std::vector<char> technique_layout_letters();
 std::vector<std::string> technique_filter_suffixes();

@@ -17,23 +17,32 @@
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
-// unit, and each defines the same MapFilterOps entries (parse_keys, lookup, ...).
+// unit, and each defines the same MapFilterOps entries (keys, lookup, ...).
 namespace vsm_filter {
 namespace {
 
-void parse_keys(SpecReader& r, const std::string& name, const char* flag, MapParams& p) {
-  read_blur(r, name, flag, p);
-  VsmKeys& v = p.vsm;
-  v.min_variance = r.get_double("min_variance", v.min_variance, 0.0, 1e6);
-  v.bleed = r.get_double("bleed", v.bleed, 0.0, 0.99);
-  v.maxdepth_eps = r.get_double("maxdepth_eps", v.maxdepth_eps, 0.0, 1e3);
-  v.slope_moment = r.get_bool("slope_moment", v.slope_moment);
-  v.fp32 = r.get_bool("fp32", v.fp32);
-}
-
-std::string keys_text(const MapParams& p) {
-  return fmt::format("blur={},min_variance={:g},bleed={:g},maxdepth_eps={:g},slope_moment=0,fp32=0",
-                     p.blur, p.vsm.min_variance, p.vsm.bleed, p.vsm.maxdepth_eps);
+const std::vector<MapKey>& keys() {
+  static const std::vector<MapKey> k = {
+      [] { MapKey b = map_blur_key(); b.tune = "3|5"; return b; }(),
+      {.name = "min_variance", .type = KeyType::Number, .def = 1e-6, .lo = 0.0, .hi = 1e6,
+       .help = "variance floor, m² (1e-6: 1 mm standard deviation)",
+       .store = [](MapParams& p, const KeyValue& v) { p.vsm.min_variance = v.number; }},
+      {.name = "bleed", .type = KeyType::Number, .def = 0.0, .lo = 0.0, .hi = 0.99,
+       .help = "light-bleeding reduction: p -> linstep(bleed, 1, p)",
+       .store = [](MapParams& p, const KeyValue& v) { p.vsm.bleed = v.number; }},
+      {.name = "maxdepth_eps", .type = KeyType::Number, .def = 0.0, .lo = 0.0, .hi = 1e3,
+       .help = "(Krave) > 0 stores the footprint's max depth; a receiver deeper than max + eps "
+               "(m) is fully shadowed",
+       .store = [](MapParams& p, const KeyValue& v) { p.vsm.maxdepth_eps = v.number; }},
+      {.name = "slope_moment", .type = KeyType::Flag, .def = 0,
+       .help = "(Krave) M2 = d² + ¼((∂d/∂x)² + (∂d/∂y)²) per texel",
+       .store = [](MapParams& p, const KeyValue& v) { p.vsm.slope_moment = v.number != 0.0; }},
+      {.name = "fp32", .type = KeyType::Flag, .def = 0,
+       .help = "moments (d, d²) filtered in float, the naive form kept to measure its "
+               "cancellation; 0: filtered in double, stored as (mean, variance)",
+       .store = [](MapParams& p, const KeyValue& v) { p.vsm.fp32 = v.number != 0.0; }},
+  };
+  return k;
 }
 
 // The two moments of a texel are stored interleaved in map.a (texel i's at a[2i], a[2i + 1]):
@@ -235,7 +244,7 @@ uint64_t tap_bytes(const MapParams& p) { return 4 * stored_planes(p); }
 
 const MapFilterOps kVarianceMap = {
     "vsm", "variance shadow map", MapFilter::Variance,
-    vsm_filter::parse_keys, vsm_filter::keys_text, vsm_filter::filter, vsm_filter::lookup,
+    vsm_filter::keys, vsm_filter::filter, vsm_filter::lookup,
     vsm_filter::taps_per_lookup, vsm_filter::tap_bytes, vsm_filter::stored_planes,
     vsm_filter::by_tiles, false};
 
