@@ -32,8 +32,4 @@ struct CentredWindow3Kernels {
 };
 const CentredWindow3Kernels& centred_window3_kernels(Isa isa);
 
-// Texels x = from .. n − 1 of row() by the scalar loop: the vector rows' head and tail.
-void centred_window3_scalar_span(const float* r0, const float* r1, const float* r2, int from,
-                                 int n, float* mean, float* var, int stride);
-
 }  // namespace shadowlab

@@ -2,11 +2,10 @@
 // core/lanes_avx2.h and core/lanes_avx512.h (Vf, kLanes, vadd, ...). Included, inside its own
 // namespace, by centred_window3_avx2.cpp and centred_window3_avx512.cpp, each of which first
 // defines store_zip(out, mean, var): its instruction set's interleave of kLanes texels' means
-// and variances into 2·kLanes floats at out.
+// and variances into 2·kLanes floats at out. The heads and tails are the scalar texel's loop
+// (centred_window3_texel.inl), compiled for the same set.
 
-// 1/3 and 1/9 rounded to float, as the scalar row's (the same constants, so the same bits).
-constexpr float kThird = 1.0f / 3.0f;
-constexpr float kNinth = 1.0f / 9.0f;
+#include "techniques/centred_window3_texel.inl"
 
 // Texels to compute one by one before the interleaved output (8 bytes per texel) starts a
 // 64-byte line, so the vector stores after them do not straddle lines (a store across two
@@ -42,7 +41,7 @@ void row(const float* r0, const float* r1, const float* r2, int n, float* mean, 
          int stride) {
   const bool zip = stride == 2 && var == mean + 1;
   int x = zip ? texels_to_line(mean, n) : 0;
-  centred_window3_scalar_span(r0, r1, r2, 0, x, mean, var, stride);
+  scalar_span(r0, r1, r2, 0, x, mean, var, stride);
   for (; x + kLanes <= n; x += kLanes) {
     Vf m, v;
     window(r0, r1, r2, x, m, v);
@@ -58,5 +57,5 @@ void row(const float* r0, const float* r1, const float* r2, int n, float* mean, 
       var[size_t(stride) * size_t(x + l)] = vb[l];
     }
   }
-  centred_window3_scalar_span(r0, r1, r2, x, n, mean, var, stride);
+  scalar_span(r0, r1, r2, x, n, mean, var, stride);
 }
