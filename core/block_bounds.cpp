@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 
 #if defined(__x86_64__)
@@ -69,7 +69,7 @@ SL_TARGET("avx2") float fold_component(const float* v, int c, float fill) {
 }  // namespace
 
 void BlockRowBounds::reset(int blocks_x) {
-  avx2 = use_avx2_paths();
+  avx2 = process_isa() >= Isa::avx2;
   acc.assign(size_t(blocks_x), BlockBounds{});
   nan.assign(size_t(blocks_x), 0);
   used.assign(size_t(blocks_x), 0);

@@ -22,7 +22,7 @@ struct BlockRowBounds {
   std::vector<float> lanes;      // per block: 6 × 8 floats (3 minimum, 3 maximum vectors)
   std::vector<uint8_t> nan;      // per block: a NaN position was added
   std::vector<uint8_t> used;     // per block: `lanes` holds values (else it is unset)
-  bool avx2 = false;             // use_avx2_paths() at reset
+  bool avx2 = false;             // process_isa() >= Isa::avx2 at reset
   void reset(int blocks_x);
   // Adds the covered pixels of one image row: positions pos[0..width), coverage cov[0..width).
   void add_row(const vec3* pos, const uint8_t* cov, int width);

@@ -1,7 +1,7 @@
 #pragma once
 // The target attribute of a hand-written SIMD kernel: SL_TARGET("avx2") compiles the function
 // for AVX2 (and SL_TARGET("avx512f,avx512dq") for AVX-512) inside a baseline x86-64 build; the
-// run-time choice of which kernel runs is core/cpu_features.h's.
+// run-time choice of which kernel runs is core/isa.h's.
 //
 // In the emulated build (SHADOWLAB_EMULATE_SIMD, README "Testing the AVX-512 kernels on any
 // machine") the attribute is empty and core/simd_emulation.h maps the AVX2 and AVX-512

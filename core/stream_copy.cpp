@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 
 #if defined(__x86_64__)
@@ -60,8 +60,8 @@ void stream_fence() {
 }
 
 StreamCopy stream_copy_kernel() {
-  if (use_avx512_paths()) return stream_copy_avx512;
-  if (use_avx2_paths()) return stream_copy_avx2;
+  if (process_isa() == Isa::avx512) return stream_copy_avx512;
+  if (process_isa() >= Isa::avx2) return stream_copy_avx2;
   return stream_copy_scalar;
 }
 

@@ -14,7 +14,7 @@ namespace shadowlab {
 // dst[i] = src[i] for i < n; the ranges do not overlap.
 using StreamCopy = void (*)(const float* src, size_t n, float* dst);
 
-// The copy for this run: AVX-512 or AVX2 stores per core/cpu_features.h, else the scalar loop.
+// The copy for this run: AVX-512 or AVX2 stores per core/isa.h's process_isa(), else the scalar loop.
 StreamCopy stream_copy_kernel();
 
 // Orders this thread's earlier stream copies before its later stores (x86 sfence).

@@ -11,7 +11,7 @@
 #include <immintrin.h>
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
@@ -51,12 +51,6 @@ double power(double x, double p) {
 // or 4 (exp_d4, log_d4) per step where the CPU has them, the tail and the rest by power(): the
 // same bits either way (core/exp_log.h gives the scalar bits in every lane; the selects are
 // power()'s).
-enum class Lanes { scalar, avx2, avx512 };
-
-Lanes lanes_here() {
-  if (use_avx512_paths()) return Lanes::avx512;
-  return use_avx2_paths() ? Lanes::avx2 : Lanes::scalar;
-}
 
 #if defined(__x86_64__)
 SL_TARGET("avx512f,avx512dq") size_t power8(const double* x, const double* p,
@@ -90,11 +84,11 @@ SL_TARGET("avx2") size_t power4(const double* x, const double* p, double p0, siz
 }
 #endif
 
-void power_n(Lanes lanes, const double* x, const double* p, double p0, size_t n, double* out) {
+void power_n(Isa lanes, const double* x, const double* p, double p0, size_t n, double* out) {
   size_t i = 0;
 #if defined(__x86_64__)
-  if (lanes == Lanes::avx512) i = power8(x, p, p0, n, out);
-  if (lanes == Lanes::avx2) i = power4(x, p, p0, n, out);
+  if (lanes == Isa::avx512) i = power8(x, p, p0, n, out);
+  if (lanes == Isa::avx2) i = power4(x, p, p0, n, out);
 #endif
   for (; i < n; ++i) out[i] = power(x[i], p ? p[i] : p0);
 }
@@ -374,7 +368,7 @@ void for_runs(size_t n, int w, const F& f) {
 
 // Hunt-adjusted CIELAB of pixels [b, e) of three linear RGB planes (clamped to [0, 1]): the
 // cube roots as one power_n call per channel; hunt_lab_from_linear's operations otherwise.
-void hunt_lab_run(Lanes lanes, const Plane* rgb, size_t b, size_t e, std::vector<double>* lab) {
+void hunt_lab_run(Isa lanes, const Plane* rgb, size_t b, size_t e, std::vector<double>* lab) {
   const size_t k = e - b;
   std::vector<double> t[3], f[3];
   for (int c = 0; c < 3; ++c) {
@@ -405,7 +399,7 @@ void hunt_lab_run(Lanes lanes, const Plane* rgb, size_t b, size_t e, std::vector
 
 // CIELAB of a grey image's pixels [b, e) from its filtered Y' plane: L from the cube root of
 // the clamped luminance, a = b = 0.
-void grey_lab_run(Lanes lanes, const double* ycc_y, size_t b, size_t e, std::vector<double>* lab) {
+void grey_lab_run(Isa lanes, const double* ycc_y, size_t b, size_t e, std::vector<double>* lab) {
   const size_t k = e - b;
   std::vector<double> t(k), f(k);
   for (size_t i = 0; i < k; ++i) t[i] = std::clamp((ycc_y[b + i] + 16.0) / 116.0, 0.0, 1.0);
@@ -454,7 +448,7 @@ FlipPrepared flip_prepare(const ImageF& img, double ppd) {
   for (int c = 0; c < planes; ++c)
     correlate(ycc[c].get(), w, h, csf_kernel(kCsf[c], ppd), filtered[c].get());
   for (auto& l : p.lab) l.resize(n);
-  const Lanes lanes = lanes_here();
+  const Isa lanes = process_isa();
   if (grey) {
     // A grey stays grey: its filtered luminance Y = (Y' + 16)/116, clamped to [0, 1] as the
     // RGB box clamps it, has L* = 116·f(Y) − 16 and a* = b* = 0.
@@ -503,7 +497,7 @@ ImageF flip_error_map(const FlipPrepared& t, const FlipPrepared& r) {
   const double c_max = cmax();
   ImageF out(t.width, t.height, 1);
   const size_t n = out.pixel_count();
-  const Lanes lanes = lanes_here();
+  const Isa lanes = process_isa();
   for_runs(n, t.width, [&](size_t b, size_t e) {
     const size_t k = e - b;
     std::vector<double> de(k), dc(k), ex(k), v(k);

@@ -7,7 +7,7 @@
 #define SHADOWLAB_HAVE_X86 1
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 #include "raster/setup.h"
 
@@ -15,14 +15,6 @@ namespace shadowlab {
 
 namespace {
 
-enum class DepthIsa { Scalar, Avx2, Avx512 };
-
-DepthIsa depth_isa() {
-  static const DepthIsa isa = use_avx512_paths() ? DepthIsa::Avx512
-                              : use_avx2_paths() ? DepthIsa::Avx2
-                                                 : DepthIsa::Scalar;
-  return isa;
-}
 
 // Block j's skip and whole-coverage tests (edge values e at its first pixel). Each is one
 // test of the three values' OR (a sign bit set in any of them), not a chain of three branches:
@@ -241,35 +233,30 @@ SL_AVX512 static void depth_triangle_avx512_impl(const TriangleSetup& s, int x0,
 
 DepthTriangleFn depth_triangle_avx512() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx512()) return depth_triangle_avx512_impl;
+  if (cpu_isa() == Isa::avx512) return depth_triangle_avx512_impl;
 #endif
   return nullptr;
 }
 
 DepthTriangleFn depth_triangle_selected() {
-  return depth_isa() == DepthIsa::Avx512 ? depth_triangle_avx512() : nullptr;
+  return process_isa() == Isa::avx512 ? depth_triangle_avx512() : nullptr;
 }
 
 DepthRow8Fn depth_row8_avx2() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx2()) return depth_row8_avx2_impl;
+  if (cpu_isa() >= Isa::avx2) return depth_row8_avx2_impl;
 #endif
   return nullptr;
 }
 
 DepthRow8Fn depth_row8_selected() {
   // The AVX-512 path walks whole triangles (depth_triangle_avx512); rows of blocks in AVX2.
-  const DepthRow8Fn avx2 = depth_isa() == DepthIsa::Scalar ? nullptr : depth_row8_avx2();
+  const DepthRow8Fn avx2 = process_isa() == Isa::scalar ? nullptr : depth_row8_avx2();
   return avx2 ? avx2 : depth_row8_scalar;
 }
 
 const char* depth_kernel_name() {
-  switch (depth_isa()) {
-    case DepthIsa::Avx512: return "avx512";
-    case DepthIsa::Avx2: return "avx2";
-    case DepthIsa::Scalar: break;
-  }
-  return "scalar";
+  return isa_name(process_isa());
 }
 
 }  // namespace shadowlab

@@ -6,7 +6,7 @@
 #define SHADOWLAB_HAVE_X86 1
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/gbuffer.h"
 #include "core/simd_target.h"
 
@@ -258,7 +258,7 @@ namespace {
 
 ResolveRun8Fn resolve_run8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx2_paths()) return resolve_run8_avx2;
+  if (process_isa() >= Isa::avx2) return resolve_run8_avx2;
 #endif
   return nullptr;
 }
@@ -274,14 +274,14 @@ void resolve_lanes16_fill(ResolveLanes16&, uint32_t, const vec3&, const vec3&, c
 
 ResolveLanes16Fn resolve_lanes16_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx512_paths()) return resolve_lanes16_avx512;
+  if (process_isa() == Isa::avx512) return resolve_lanes16_avx512;
 #endif
   return nullptr;
 }
 
 ResolveLanes8Fn resolve_lanes8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx2_paths()) return resolve_lanes8_avx2;
+  if (process_isa() >= Isa::avx2) return resolve_lanes8_avx2;
 #endif
   return nullptr;
 }

@@ -7,7 +7,7 @@
 #define SHADOWLAB_HAVE_X86 1
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 
 namespace shadowlab {
@@ -390,15 +390,15 @@ SL_SETUP2 int setup_batch8_avx2(const SetupBatch8& b, int width, int height, Cul
 
 SetupBatch8Fn setup_batch8_simd() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx512_paths()) return setup_batch8_avx512;
-  if (use_avx2_paths()) return setup_batch8_avx2;
+  if (process_isa() == Isa::avx512) return setup_batch8_avx512;
+  if (process_isa() >= Isa::avx2) return setup_batch8_avx2;
 #endif
   return nullptr;
 }
 
 SetupBatch8Fn setup_batch8_avx2_form() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx2()) return setup_batch8_avx2;
+  if (cpu_isa() >= Isa::avx2) return setup_batch8_avx2;
 #endif
   return nullptr;
 }

@@ -5,7 +5,7 @@
 #define SHADOWLAB_HAVE_X86 1
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 #include "raster/clip.h"
 
@@ -101,14 +101,14 @@ SL_AVX2 void transform_vertices_avx2(const mat4& m, const vec3* pos, size_t n, f
 
 TransformVerticesFn transform_vertices_selected() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (use_avx2_paths()) return transform_vertices_avx2;
+  if (process_isa() >= Isa::avx2) return transform_vertices_avx2;
 #endif
   return transform_vertices_scalar;
 }
 
 TransformVerticesFn transform_vertices_avx2_form() {
 #ifdef SHADOWLAB_HAVE_X86
-  if (cpu_has_avx2()) return transform_vertices_avx2;
+  if (cpu_isa() >= Isa::avx2) return transform_vertices_avx2;
 #endif
   return nullptr;
 }

@@ -19,7 +19,7 @@ using TransformVerticesFn = void (*)(const mat4& m, const vec3* pos, size_t n, f
 void transform_vertices_scalar(const mat4& m, const vec3* pos, size_t n, float guard_x,
                                float guard_y, vec4* clip, uint32_t* code);
 
-// The AVX2 form where use_avx2_paths() holds, else the scalar one.
+// The AVX2 form where process_isa() >= Isa::avx2 holds, else the scalar one.
 TransformVerticesFn transform_vertices_selected();
 
 // The AVX2 form whenever the CPU runs it (nullptr otherwise), whatever is forced: for the tests.

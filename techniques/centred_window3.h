@@ -10,18 +10,26 @@
 // techniques/moment_filter.h). Squaring δ/3 rather than δ keeps the sum of 8 squares finite for
 // EVSM's largest exponent: |δ| < e^c, and 8·e^(2c)/9 < FLT_MAX for c ≤ 44.36. The bounds and
 // their measurement: docs/techniques/vsm.md, Precision.
+#include "core/isa.h"
+
 namespace shadowlab {
 
-// Which kernel computes a row: each gives the scalar loop's bits (the same float operations in
-// the same order; -ffp-contract=off), which tests/techniques/centred_window3_test.cpp checks.
-enum class WindowIsa { scalar, avx2, avx512 };
-
-// Output texels x = 0 .. n − 1 of one row from the three extended input rows of its windows
+// row: output texels x = 0 .. n − 1 of one row from the three extended input rows of its windows
 // (n + 2 values each: texel x's window is r0, r1, r2 [x .. x + 2], its centre r1[x + 1]):
 // texel x's mean at mean[stride·x] and variance at var[stride·x]. The vector kernels store
 // stride 2 with var = mean + 1 (the interleaved map) straight from registers; other layouts
 // through a small buffer.
-void centred_window3_row(WindowIsa isa, const float* r0, const float* r1, const float* r2, int n,
-                         float* mean, float* var, int stride);
+using CentredWindow3RowFn = void (*)(const float* r0, const float* r1, const float* r2, int n,
+                                    float* mean, float* var, int stride);
+
+// The family's table per instruction set (docs/simd.md): the scalar row is the oracle; the AVX2
+// and AVX-512 rows (one body, techniques/centred_window3_simd.inl) give its bits, the same float
+// operations in the same order (-ffp-contract=off), which tests/techniques/centred_window3_test.cpp
+// checks for every instruction set the CPU runs.
+struct CentredWindow3Kernels {
+  Isa isa;  // the instruction set the row was compiled for
+  CentredWindow3RowFn row;
+};
+const CentredWindow3Kernels& centred_window3_kernels(Isa isa);
 
 }  // namespace shadowlab

@@ -191,8 +191,8 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       return poisson_visibility(L.faces[size_t(r.face)], map.dist.distance[size_t(r.face)].data(),
                                 r, disk, radius);
     };
-    // The batch needs AVX2 (receivers8_simd() is null without it) and no plane gradient.
-    if (receivers8_simd() && !p.rpdb)
+    // The batch needs AVX2 (the scalar table's receivers8 is null) and no plane gradient.
+    if (lookup_kernels(process_isa()).receivers8 && !p.rpdb)
       lookup_pixels(scene, g, p, map, mask, texels, visibility, PoissonBatch{&disk, radius, &map});
     else
       lookup_pixels(scene, g, p, map, mask, texels, visibility);

@@ -10,7 +10,7 @@
 #include <immintrin.h>
 #endif
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
 #include "core/prefetch.h"
@@ -22,8 +22,6 @@ namespace shadowlab {
 // anonymous namespace has kernels of the same kind.
 namespace esm_float {
 namespace {
-
-enum class Isa { scalar, avx2, avx512 };
 
 // A tile's exponentials: 32 + k − 1 rows of kPitch floats (its windows' inputs, k/2 texels
 // around its own), computed over whole vectors; the lanes past a row's inputs are never summed.
@@ -370,11 +368,7 @@ void prefetch_output(const float* out, int w, int y0, int th, int x0, int tw) {
   }
 }
 
-Isa pick_isa(bool simd) {
-  if (!simd) return Isa::scalar;
-  if (use_avx512_paths()) return Isa::avx512;
-  return use_avx2_paths() ? Isa::avx2 : Isa::scalar;
-}
+Isa pick_isa(bool simd) { return simd ? process_isa() : Isa::scalar; }
 
 }  // namespace
 }  // namespace esm_float

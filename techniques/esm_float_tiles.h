@@ -30,7 +30,7 @@ constexpr int kEsmFloatMaxWidth = 9;
 // tiles) that the float path takes, and marks in `rest` (resized to the face's tile grid,
 // cleared) the ones it leaves, whose texels it does not write. Returns the number left. k odd,
 // 1 <= k <= kEsmFloatMaxWidth; c > 0. simd false: the scalar kernels (the oracle), else the
-// widest of AVX-512 and AVX2 the CPU has (core/cpu_features.h); both give the same bits.
+// widest of AVX-512 and AVX2 the CPU has (core/isa.h: process_isa); both give the same bits.
 size_t esm_float_tiles(const float* dist, int w, int h, int k, double c, bool simd,
                        const FaceTiles* tiles, float* out, FaceTiles& rest);
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/simd_target.h"
@@ -82,8 +82,8 @@ SL_TARGET("avx2") void esm_combine8_avx2(const float (*z)[8], const float* fx,
 }
 #endif
 
-// avx2: use_avx2_paths(), read once per lookup by the caller (it reads the environment, which
-// cost ~5 % of the ESM lookup when it was read per 8 pixels).
+// avx2: process_isa() >= Isa::avx2, read once per lookup by the caller (a call per 8 pixels
+// costs more than the choice is worth).
 void esm_combine8(bool avx2, const float (*z)[8], const float* fx, const float* fy,
                   const float* ct, float* out) {
 #if defined(__x86_64__)
@@ -103,7 +103,7 @@ struct EsmBatch {
   static constexpr bool kEnabled = true;
   const Taps& taps_of;
   float cf;
-  bool avx2;  // use_avx2_paths() at the lookup's start
+  bool avx2;  // process_isa() >= Isa::avx2 at the lookup's start
   Bilinear8Fn bilinear8;
   PlaneGather a;
   Prefetch8Fn prefetch8;
@@ -147,9 +147,10 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     taps(r.face, r.st, z4, fx, fy);
     return esm_combine(z4[0], z4[1], z4[2], z4[3], fx, fy, cf * r.depth);
   };
+  const LookupKernels& kernels = lookup_kernels(process_isa());
   lookup_pixels(scene, g, p, map, mask, texels, visibility,
-                EsmBatch<decltype(taps)>{taps, cf, use_avx2_paths(), bilinear8_simd(), plane_gather(map.a),
-                                         prefetch8_simd()});
+                EsmBatch<decltype(taps)>{taps, cf, kernels.isa >= Isa::avx2, kernels.bilinear8,
+                                         plane_gather(map.a), kernels.prefetch8});
 }
 
 uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear

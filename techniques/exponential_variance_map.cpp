@@ -161,7 +161,7 @@ SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const 
 
 // 8 lanes at once: each warp's interleaved bilinear taps loaded by the AVX2 kernel, then
 // evsm_value's arithmetic in AVX2 double (evsm_batch_avx2). Used only where the AVX2 kernels
-// exist (bilinear8_interleaved2_simd() is null otherwise, and the scalar loop runs evsm_value).
+// exist (the scalar table's bilinear8_interleaved2 is null, and the scalar loop runs evsm_value).
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
@@ -200,8 +200,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     }
     return evsm_value(k, P[0], P[1], P[2], P[3], bl.fx, bl.fy, r.depth);
   };
-  EvsmBatch batch{k, k.four ? bilinear8_interleaved4_simd() : bilinear8_interleaved2_simd(),
-                  plane_gather(map.a), prefetch8_simd()};
+  const LookupKernels& kernels = lookup_kernels(process_isa());
+  EvsmBatch batch{k, k.four ? kernels.bilinear8_interleaved4 : kernels.bilinear8_interleaved2,
+                  plane_gather(map.a), kernels.prefetch8};
   const bool gathers = batch.taps != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);

@@ -3,103 +3,19 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
-#include <immintrin.h>
 #include <cstdint>
 #include <limits>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/parallel.h"
-#include "core/simd_target.h"
 #include "raster/alpha_test.h"
 #include "raster/pipeline.h"
 #include "techniques/cube_faces.h"
+#include "techniques/face_rows.h"
 #include "techniques/paraboloid_tess.h"
 
 namespace shadowlab {
 namespace {
-
-// One row of the epilogue below. Branch-free so it vectorizes: an empty texel (1/w = 0)
-// divides to +inf, "nothing seen". Compiled for AVX-512, AVX2 and baseline (chosen at run time;
-// the AVX-512 clone took the cube at 2048 from 19.05 to 18.35 ms); sqrt, multiply, add and
-// divide are exact IEEE operations in a fixed order, so every clone gives the same bits. u of
-// texel x is u0 + (x + 0.5)·du.
-__attribute__((target_clones("avx512f", "avx2", "default"))) void radial_row(
-    float* row, int x0, int x1, float u0, float du, float v, float inv_far) {
-  for (int x = x0; x < x1; ++x) {
-    const float u = u0 + (float(x) + 0.5f) * du;
-    row[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / row[x];
-  }
-}
-
-// The smallest value of row[x0, x1) (+inf when none is smaller), ignoring NaN (a NaN never
-// compares less). min is exact, so the AVX2 loop (8 lanes, then combined) and the scalar loop
-// give the same value; the plain loop does not vectorize without -ffast-math, and cost the
-// render ~50 % as scalar code.
-float row_min_scalar(const float* row, int x0, int x1) {
-  float m = std::numeric_limits<float>::infinity();
-  for (int x = x0; x < x1; ++x) m = row[x] < m ? row[x] : m;
-  return m;
-}
-
-// radial_row over the rows [y0, y1) of a tile (v of row y: top − (y + ½)·dv) and the minimum of
-// the results, in one AVX2 loop: radial_row's operations in its order per lane (u = u0 +
-// (x + ½)·du; sqrt((1 + u²) + v²) · inv_far / row[x], no FMA), so each texel gets its bits. One
-// call per tile: per row, the call's own cost was a third of the loop's.
-SL_TARGET("avx2") float radial_tile_min_avx2(float* out, size_t stride, int x0,
-                                             int x1, int y0, int y1, float u0,
-                                             float du, float top, float dv,
-                                             float inv_far) {
-  // _mm256_min_ps(a, b) is a < b ? a : b per lane: with the new values as a, a NaN keeps b.
-  __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-  float tail_min = std::numeric_limits<float>::infinity();
-  const __m256 lane = _mm256_setr_ps(0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f);
-  const __m256 one = _mm256_set1_ps(1.0f), vu0 = _mm256_set1_ps(u0), vdu = _mm256_set1_ps(du);
-  const __m256 vfar = _mm256_set1_ps(inv_far);
-  for (int y = y0; y < y1; ++y) {
-    float* const row = out + size_t(y) * stride;
-    const float v = top - (float(y) + 0.5f) * dv;
-    const __m256 vv = _mm256_set1_ps(v * v);
-    int x = x0;
-    for (; x + 8 <= x1; x += 8) {
-      // float(x) + (l + 0.5) is exact for x < 2^22 (faces are at most 16384 texels wide), as
-      // float(x) + 0.5 per texel in radial_row.
-      const __m256 xs = _mm256_add_ps(_mm256_set1_ps(float(x)), lane);
-      const __m256 u = _mm256_add_ps(vu0, _mm256_mul_ps(xs, vdu));
-      const __m256 r2 = _mm256_add_ps(_mm256_add_ps(one, _mm256_mul_ps(u, u)), vv);
-      const __m256 d =
-          _mm256_div_ps(_mm256_mul_ps(_mm256_sqrt_ps(r2), vfar), _mm256_loadu_ps(row + x));
-      _mm256_storeu_ps(row + x, d);
-      m = _mm256_min_ps(d, m);
-    }
-    for (; x < x1; ++x) {  // radial_row's scalar form
-      const float u = u0 + (float(x) + 0.5f) * du;
-      row[x] = std::sqrt(1.0f + u * u + v * v) * inv_far / row[x];
-      tail_min = row[x] < tail_min ? row[x] : tail_min;
-    }
-  }
-  alignas(32) float lanes[8];
-  _mm256_store_ps(lanes, m);
-  for (const float l : lanes) tail_min = l < tail_min ? l : tail_min;
-  return tail_min;
-}
-
-// paraboloid_row and row_min_scalar in one AVX2 loop (inv_far / row[x] per lane: its bits).
-SL_TARGET("avx2") float paraboloid_row_min_avx2(float* row, int x0, int x1,
-                                                float inv_far) {
-  __m256 m = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-  int x = x0;
-  for (; x + 8 <= x1; x += 8) {
-    const __m256 d = _mm256_div_ps(_mm256_set1_ps(inv_far), _mm256_loadu_ps(row + x));
-    _mm256_storeu_ps(row + x, d);
-    m = _mm256_min_ps(d, m);
-  }
-  alignas(32) float lanes[8];
-  _mm256_store_ps(lanes, m);
-  for (int i = x; i < x1; ++i) row[i] = inv_far / row[i];
-  float r = row_min_scalar(row, x, x1);
-  for (const float l : lanes) r = l < r ? l : r;
-  return r;
-}
 
 // Lowers *bits (a non-negative float's bits, which order as unsigned integers) to m's.
 void atomic_min_float(std::atomic<uint32_t>& bits, float m) {
@@ -107,12 +23,6 @@ void atomic_min_float(std::atomic<uint32_t>& bits, float m) {
   uint32_t cur = bits.load(std::memory_order_relaxed);
   while (mb < cur && !bits.compare_exchange_weak(cur, mb, std::memory_order_relaxed)) {
   }
-}
-
-// The paraboloid faces' row: w is the radial distance itself (raster/paraboloid.h).
-__attribute__((target_clones("avx2", "default"))) void paraboloid_row(float* row, int x0, int x1,
-                                                                     float inv_far) {
-  for (int x = x0; x < x1; ++x) row[x] = inv_far / row[x];
 }
 
 // Depth-only shader whose tile epilogue turns 1/w (reciprocal view depth) into normalised
@@ -124,7 +34,7 @@ struct FaceRadialShader {
   const LightFace* face;
   float inv_far;
   std::atomic<uint32_t>* min_bits;  // the face's smallest distance so far (float bits), or null
-  bool avx2;  // radial_tile_min_avx2 (else radial_row + row_min_scalar: the same bits)
+  const FaceRowKernels* rows;  // the epilogue's rows (techniques/face_rows.h)
   bool operator()(const Fragment&) const { return true; }
   void finish_tile(int x0, int y0, int x1, int y1, float* out, size_t stride) const {
     // Plane coordinates (u, v) of the texel centres (x + 0.5, y + 0.5).
@@ -134,32 +44,21 @@ struct FaceRadialShader {
       for (int y = y0; y < y1; ++y) {
         float* const row = out + size_t(y) * stride;
         if (face->paraboloid)
-          paraboloid_row(row, x0, x1, inv_far);
+          rows->paraboloid_row(row, x0, x1, inv_far);
         else
-          radial_row(row, x0, x1, face->left, du, face->top - (float(y) + 0.5f) * dv, inv_far);
+          rows->radial_row(row, x0, x1, face->left, du, face->top - (float(y) + 0.5f) * dv,
+                           inv_far);
       }
       return;
     }
     // With the conversion: the stored distances' minimum (ESM's shift).
     float m = std::numeric_limits<float>::infinity();
-    if (avx2 && !face->paraboloid) {
-      m = radial_tile_min_avx2(out, stride, x0, x1, y0, y1, face->left, du,
-                               face->top, dv, inv_far);
+    if (!face->paraboloid) {
+      m = rows->radial_tile_min(out, stride, x0, x1, y0, y1, face->left, du, face->top, dv,
+                                inv_far);
     } else {
       for (int y = y0; y < y1; ++y) {
-        float* const row = out + size_t(y) * stride;
-        float rm;
-        if (face->paraboloid) {
-          if (avx2) {
-            rm = paraboloid_row_min_avx2(row, x0, x1, inv_far);
-          } else {
-            paraboloid_row(row, x0, x1, inv_far);
-            rm = row_min_scalar(row, x0, x1);
-          }
-        } else {
-          radial_row(row, x0, x1, face->left, du, face->top - (float(y) + 0.5f) * dv, inv_far);
-          rm = row_min_scalar(row, x0, x1);
-        }
+        const float rm = rows->paraboloid_row_min(out + size_t(y) * stride, x0, x1, inv_far);
         m = rm < m ? rm : m;
       }
     }
@@ -231,7 +130,7 @@ void render_face_distances(const Scene& scene, const FaceLayout& layout,
     target.resize(face.width, face.height);
     FaceRadialShader shader{&face, 1.0f / scene.light.far,
                             min_distance ? &min_bits[i] : nullptr,
-                            use_avx2_paths()};
+                            &face_row_kernels(process_isa())};
     if (face.paraboloid) {
       const ParaboloidProjection pp = face_paraboloid(face, scene.light);
       if (tess > 0) {

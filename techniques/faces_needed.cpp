@@ -213,7 +213,7 @@ std::vector<bool> faces_needed(const Scene& scene, const GBuffer& g, const FaceL
   const uint32_t all = nf >= 32 ? ~0u : (1u << nf) - 1u;
   // The AVX2 kernel (no normal offset) takes groups of 8 pixels; the scalar loop is its oracle
   // and takes the rest.
-  const Faces8Fn faces8 = p.normal <= 0.0f ? faces8_simd() : nullptr;
+  const Faces8Fn faces8 = p.normal <= 0.0f ? lookup_kernels(process_isa()).faces8 : nullptr;
   const MapLookupConsts consts =
       faces8 ? map_lookup_consts(scene, layout, p, {}) : MapLookupConsts{};
   // Faces (bit f: face f) and looked-up pixels of the pixels [b, e).

@@ -57,16 +57,17 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
     if constexpr (requires { Batch::kComputesGradient; }) return Batch::kComputesGradient;
     return false;
   }();
+  const LookupKernels& kernels = lookup_kernels(process_isa());
   const Receivers8Fn receivers8 =
-      p.normal <= 0.0f && (!p.rpdb || batch_gradient) ? receivers8_simd() : nullptr;
+      p.normal <= 0.0f && (!p.rpdb || batch_gradient) ? kernels.receivers8 : nullptr;
   if (!receivers8) {
     lookup_faces(scene, g, L, p, mask, texels, visibility, [](size_t, size_t) { return size_t(0); });
     return;
   }
   const MapLookupConsts c = map_lookup_consts(scene, L, p, map.dist.distance);
   const bool depth = p.filter == MapFilter::Depth && c.gather_ok;
-  const Depth1Fn depth1 = depth && p.pcf <= 1 ? depth1_simd() : nullptr;
-  const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? pcf_simd() : nullptr;
+  const Depth1Fn depth1 = depth && p.pcf <= 1 ? kernels.depth1 : nullptr;
+  const PcfFn pcf = depth && p.pcf > 1 && p.pcf_kind == PcfKind::Grid ? kernels.pcf : nullptr;
   lookup_faces(scene, g, L, p, mask, texels, visibility, [&](size_t b, size_t e) {
     size_t i = b;
     // The batch's pixels, G groups of 8 per call, from i on while G groups remain (returns the
@@ -99,7 +100,7 @@ void lookup_pixels(const Scene& scene, const GBuffer& g, const MapParams& p, con
         call_batch<G>(batch, c, cur, at, vis);
         for (int h = 0; h < G; ++h) {
           const size_t px = at + 8 * size_t(h);
-          merge8(cur[h], vis[h], &mask.data[px], texels ? &texels->data[px] : nullptr);
+          kernels.merge8(cur[h], vis[h], &mask.data[px], texels ? &texels->data[px] : nullptr);
         }
       }
       return at;

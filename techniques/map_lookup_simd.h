@@ -9,12 +9,13 @@
 //   faces8     the faces some pixel's lookup needs (the pipeline's stage 2).
 // Each performs the same IEEE operations in the same order as the scalar lookup (its oracle), so
 // masks and texel indices are bit-identical: tests/techniques/lookup_simd_test.cpp checks them at
-// the comparison's threshold, and whole renders with SHADOWLAB_SCALAR=1 (which disables these
-// paths) against the default.
+// the comparison's threshold, and whole renders with SHADOWLAB_SCALAR=1 (the scalar table)
+// against the default. The kernels are one family, LookupKernels (docs/simd.md).
 #include <cstdint>
 #include <vector>
 
 #include "core/aligned_vector.h"
+#include "core/isa.h"
 #include "core/math.h"
 #include "core/scene.h"
 #include "techniques/light_faces.h"
@@ -97,10 +98,8 @@ using Bilinear8x2Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
                                const PlaneGather& plane, float (*values)[4][8], float* fx,
                                float* fy);
 
-// The AVX2 kernels, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
-Bilinear8x2Fn bilinear8_interleaved2_simd();
-// The same for four values per texel (texel i's at offset + 4i + 0..3): values[0..3][tap][lane].
-Bilinear8x2Fn bilinear8_interleaved4_simd();
+// bilinear8_interleaved4 (LookupKernels): the same for four values per texel (texel i's at
+// offset + 4i + 0..3): values[0..3][tap][lane].
 
 // The bilinear mix of four values per texel (texel i's at offset + 4i + 0..3) for 8 receivers,
 // in double: m[v][lane] = Σ_t w_t · values[v][t][lane], with bilinear_weights' w (chebyshev.h)
@@ -108,7 +107,6 @@ Bilinear8x2Fn bilinear8_interleaved4_simd();
 // mix zeros. MSM's AVX2 batch (moment_shadow_map.cpp) uses it instead of the taps.
 using Mix8x4Fn = void (*)(const MapLookupConsts& c, const Receivers8& r, const PlaneGather& plane,
                           double (*m)[8]);
-Mix8x4Fn bilinear8_mix4_simd();
 
 // Prefetches the two texel rows of each active lane's bilinear footprint in a plane of
 // floats_per_texel values per texel (a hint only: no value changes). The batched lookup issues it
@@ -116,13 +114,12 @@ Mix8x4Fn bilinear8_mix4_simd();
 // larger than the caches at res 1024) arrive while the current batch computes.
 using Prefetch8Fn = void (*)(const MapLookupConsts& c, const Receivers8& r,
                              const PlaneGather& plane, int floats_per_texel);
-Prefetch8Fn prefetch8_simd();
 
 // The pixel loop's result of a batch: mask[k] = active lane ? std::clamp(vis[k], 0, 1) :
-// r.mask[k], texels[k] = r.texel[k] (when texels is given). Vector stores where the CPU has
-// AVX2 (only the AVX2 receivers make batches), with std::clamp's compare order (a NaN stays NaN).
-void merge8(const Receivers8& r, const float* vis, float* mask, uint32_t* texels);
-Receivers8Fn receivers8_simd();
+// r.mask[k], texels[k] = r.texel[k] (when texels is given), with std::clamp's compare order (a
+// NaN stays NaN).
+using Merge8Fn = void (*)(const Receivers8& r, const float* vis, float* mask, uint32_t* texels);
+
 // The texel tiles of 8 pixels' bilinear footprints (texel_tiles.cpp's pixel path): per active
 // lane its face and the tile columns tx0..tx1 and rows ty0..ty1 (tile edge 2^tile_shift
 // texels) of the footprint's clamped texels, from the receivers8 texel coordinates (the same
@@ -133,10 +130,25 @@ struct FootprintTiles8 {
 };
 using FootprintTiles8Fn = void (*)(const MapLookupConsts& c, const float* pos, const float* nrm,
                                    const uint8_t* covered, int tile_shift, FootprintTiles8& out);
-FootprintTiles8Fn footprint_tiles8_simd();
-Depth1Fn depth1_simd();
-PcfFn pcf_simd();
-Faces8Fn faces8_simd();
-Bilinear8Fn bilinear8_simd();
+
+// The lookup's kernel family: one table per instruction set (docs/simd.md). The scalar table has
+// no batch kernels (nullptr: the callers' scalar loops are the oracle) and the scalar merge8;
+// the AVX2 table has them all; AVX-512 runs the AVX2 table (the lookups are bound by their
+// gathers' memory reads, which wider lanes do not shorten).
+struct LookupKernels {
+  Isa isa;  // the instruction set the kernels were compiled for
+  Receivers8Fn receivers8;
+  Depth1Fn depth1;
+  PcfFn pcf;
+  Faces8Fn faces8;
+  FootprintTiles8Fn footprint_tiles8;
+  Bilinear8Fn bilinear8;
+  Bilinear8x2Fn bilinear8_interleaved2;
+  Bilinear8x2Fn bilinear8_interleaved4;
+  Mix8x4Fn bilinear8_mix4;
+  Prefetch8Fn prefetch8;
+  Merge8Fn merge8;
+};
+const LookupKernels& lookup_kernels(Isa isa);
 
 }  // namespace shadowlab

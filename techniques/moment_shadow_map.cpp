@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/parallel.h"
 #include "core/simd_target.h"
 #include "techniques/chebyshev.h"
@@ -208,7 +208,7 @@ struct MsmBatch {
   Mix8x4Fn mix4;              // the mixed moments, for the AVX2 form
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
-  bool avx512;  // the reconstruction in 8 lanes (use_avx512_paths) or in two halves of 4
+  bool avx512;  // the reconstruction in 8 lanes (process_isa() is avx512) or in two halves of 4
   static constexpr int kAvx2Groups = 2;  // batches per msm_batch_avx2 call in groups()
   bool grouped() const { return true; }
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
@@ -287,8 +287,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       for (int j = 0; j < 4; ++j) P[j][i] = map.a[fi][4 * idx[i] + size_t(j)];
     return msm_value(k, P, bl.fx, bl.fy, r.depth);
   };
-  MsmBatch batch{k, bilinear8_interleaved4_simd(), bilinear8_mix4_simd(), plane_gather(map.a),
-                 prefetch8_simd(), use_avx512_paths()};
+  const LookupKernels& kernels = lookup_kernels(process_isa());
+  MsmBatch batch{k, kernels.bilinear8_interleaved4, kernels.bilinear8_mix4, plane_gather(map.a),
+                 kernels.prefetch8, process_isa() == Isa::avx512};
   const bool gathers =
       batch.bilinear8x4 != nullptr && batch.mix4 != nullptr && batch.moments.ok;
   if (gathers)

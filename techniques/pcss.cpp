@@ -388,7 +388,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
                       p.pcss.model};
   auto visibility = [&](const Receiver& r) { return pcss_visibility(c, r); };
   // The model estimate runs in the scalar stages only (the AVX2 batch forms the classic one).
-  if (receivers8_simd() && !p.pcss.model)
+  if (lookup_kernels(process_isa()).receivers8 && !p.pcss.model)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, PcssBatch{&c, &scene, &g, p.rpdb});
   else
     lookup_pixels(scene, g, p, map, mask, texels, visibility);

@@ -106,7 +106,7 @@ struct PixelMarker {
   PixelMarker(const Scene& s, const GBuffer& gb, const FaceLayout& l, const MapParams& mp,
               std::vector<FaceTiles>& t)
       : scene(s), g(gb), layout(l), p(mp), tiles(t) {
-    tiles8 = p.normal <= 0.0f ? footprint_tiles8_simd() : nullptr;
+    tiles8 = p.normal <= 0.0f ? lookup_kernels(process_isa()).footprint_tiles8 : nullptr;
     if (tiles8) consts = map_lookup_consts(scene, layout, p, {});
     if (layout.kind == FaceLayoutKind::Projector) frame = projector_frame(scene.projector);
     reach = map_reach(p);

@@ -225,8 +225,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     }
     return vsm_value(k, A, B, M, bl.fx, bl.fy, r.depth);
   };
-  VsmBatch batch{k, bilinear8_interleaved2_simd(), bilinear8_simd(), plane_gather(map.a),
-                 plane_gather(map.max_depth), prefetch8_simd()};
+  const LookupKernels& kernels = lookup_kernels(process_isa());
+  VsmBatch batch{k, kernels.bilinear8_interleaved2, kernels.bilinear8, plane_gather(map.a),
+                 plane_gather(map.max_depth), kernels.prefetch8};
   const bool gathers = batch.bilinear8x2 && batch.bilinear8 && batch.moments.ok &&
                        (!k.maxdepth || batch.max_depth.ok);
   if (gathers)

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/block_bounds.h"
+#include "core/isa.h"
 
 namespace shadowlab {
 namespace {
@@ -44,27 +45,13 @@ GBuffer random_gbuffer(uint32_t seed) {
   return g;
 }
 
-class ScalarPaths {
- public:
-  explicit ScalarPaths(bool on) {
-    if (const char* v = std::getenv("SHADOWLAB_SCALAR")) old_ = v;
-    ::setenv("SHADOWLAB_SCALAR", on ? "1" : "0", 1);
-  }
-  ~ScalarPaths() {
-    if (old_.empty()) ::unsetenv("SHADOWLAB_SCALAR");
-    else ::setenv("SHADOWLAB_SCALAR", old_.c_str(), 1);
-  }
-
- private:
-  std::string old_;
-};
 
 TEST(BlockBounds, BothPathsGiveTheBruteForceBounds) {
   for (uint32_t seed = 1; seed <= 5; ++seed) {
     GBuffer g = random_gbuffer(seed);
     const std::vector<BlockBounds> expected = brute_force(g);
     for (bool scalar : {false, true}) {
-      ScalarPaths paths(scalar);
+      const ScopedIsa paths(scalar ? Isa::scalar : cpu_isa());
       g.block_bounds.clear();
       compute_block_bounds(g);
       ASSERT_TRUE(g.has_block_bounds());
@@ -83,7 +70,7 @@ TEST(BlockBounds, BothPathsGiveTheBruteForceBounds) {
 TEST(BlockBounds, NonFinitePositions) {
   const float inf = std::numeric_limits<float>::infinity();
   for (bool scalar : {false, true}) {
-    ScalarPaths paths(scalar);
+    const ScopedIsa paths(scalar ? Isa::scalar : cpu_isa());
     GBuffer g = random_gbuffer(9);
     // Block (0, 0) is fully covered (kind 0), block (2, 0) covered at random (kind 14 mod 3),
     // block (0, 1) fully covered (kind 3 mod 3).

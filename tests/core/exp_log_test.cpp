@@ -1,7 +1,7 @@
 // exp_d and log_d (core/exp_log.h) against long double, and their vectorized loops against
 // the scalar calls, bit for bit.
 #include "core/exp_log.h"
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "core/simd_target.h"
 
 #include <gtest/gtest.h>
@@ -191,7 +191,7 @@ TEST(ExpLog, WideExpAndLogHoldFloatPrecisionOverDoublesRange) {
 // (each half of the pair in its own place): grid and random exponents as above, and log
 // arguments at every power of two, both sides of the fold and just around 1.
 TEST(ExpLog, IntrinsicWideExpsAndLogsGiveTheScalarBits) {
-  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  const bool avx2 = cpu_isa() >= Isa::avx2, avx512 = cpu_isa() == Isa::avx512;
   if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<float> ux(-700.0f, 700.0f);
@@ -230,7 +230,7 @@ TEST(ExpLog, IntrinsicWideExpsAndLogsGiveTheScalarBits) {
 // exp_d4 (AVX2 intrinsics, for hand-written kernels) gives exp_d's bits, negative arguments
 // included (EVSM's negative warp).
 TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(-700.0, 700.0);
   for (int i = 0; i < 100000; i += 4) {
@@ -247,7 +247,7 @@ TEST(ExpLog, IntrinsicExpGivesTheScalarBits) {
 // exp_d8 (AVX-512: the table by a two-register permute) likewise, every table index and both
 // signs of the exponent: 2^(j/16) at j = 0..15 are hit by x = (16q + j)·ln2/16.
 TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
-  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-700.0, 700.0);
   for (int i = 0; i < 100000; i += 8) {
@@ -266,7 +266,7 @@ TEST(ExpLog, Avx512ExpGivesTheScalarBits) {
 // grid of ln2/24 steps over [-59, 59] (both signs: EVSM's negative warp; and the reduction's
 // rounding to the nearest multiple of ln2 from either side).
 TEST(ExpLog, IntrinsicFloatExpsGiveTheScalarBits) {
-  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  const bool avx2 = cpu_isa() >= Isa::avx2, avx512 = cpu_isa() == Isa::avx512;
   if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-87.0f, 88.0f);
@@ -293,7 +293,7 @@ TEST(ExpLog, IntrinsicFloatExpsGiveTheScalarBits) {
 // log_d4 and log_d8 give log_d's bits: every mantissa step (both sides of the fold at 1.5),
 // arguments just below and above 1 and powers of two, and random ones over [e^-690, e^700].
 TEST(ExpLog, IntrinsicLogsGiveTheScalarBits) {
-  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  const bool avx2 = cpu_isa() >= Isa::avx2, avx512 = cpu_isa() == Isa::avx512;
   if (!avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> u(-690.0, 700.0);
@@ -356,7 +356,7 @@ TEST(ExpLog, FloatLogSplitIsExactAndItsLanesAgree) {
       xs.push_back(std::nextafter(v, INFINITY));
     }
   while (xs.size() % 16 != 0 || xs.size() < 20000) xs.push_back(std::bit_cast<float>(bits(rng)));
-  const bool avx2 = cpu_has_avx2(), avx512 = cpu_has_avx512();
+  const bool avx2 = cpu_isa() >= Isa::avx2, avx512 = cpu_isa() == Isa::avx512;
   for (size_t i = 0; i < xs.size(); i += 16) {
     float m8[16], m16[16];
     int32_t e8[16], e16[16];

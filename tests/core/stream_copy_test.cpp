@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 
 namespace shadowlab {
 namespace {
@@ -35,12 +35,12 @@ void expect_exact_copy(StreamCopy copy) {
 TEST(StreamCopy, ScalarCopiesExactly) { expect_exact_copy(stream_copy_scalar); }
 
 TEST(StreamCopy, Avx2CopiesExactly) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2";
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2";
   expect_exact_copy(stream_copy_avx2);
 }
 
 TEST(StreamCopy, Avx512CopiesExactly) {
-  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512";
+  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512";
   expect_exact_copy(stream_copy_avx512);
 }
 

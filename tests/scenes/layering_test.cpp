@@ -23,7 +23,7 @@ Includes read_includes(const std::string& folder) {
   Includes out;
   for (const auto& e : std::filesystem::directory_iterator(test::source_path(folder))) {
     const std::string ext = e.path().extension().string();
-    if (ext != ".h" && ext != ".cpp") continue;
+    if (ext != ".h" && ext != ".cpp" && ext != ".inl") continue;
     std::ifstream in(e.path());
     std::string line;
     while (std::getline(in, line)) {

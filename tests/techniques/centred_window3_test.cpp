@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "techniques/centred_window3.h"
 
 namespace shadowlab {
@@ -47,9 +47,8 @@ Rows make_rows(int n, uint32_t seed) {
 // interleaved pairs at every offset within a cache line, EVSM4's stride 4), at lengths around
 // the vector widths.
 TEST(CentredWindow3, VectorKernelsGiveTheScalarBits) {
-  std::vector<WindowIsa> isas;
-  if (use_avx2_paths()) isas.push_back(WindowIsa::avx2);
-  if (use_avx512_paths()) isas.push_back(WindowIsa::avx512);
+  std::vector<Isa> isas = cpu_isas();
+  isas.erase(isas.begin());  // the scalar table: the oracle
   if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
   int compared = 0;
   for (const int n : {1, 7, 8, 9, 15, 16, 17, 31, 33, 100, 1030}) {
@@ -62,18 +61,18 @@ TEST(CentredWindow3, VectorKernelsGiveTheScalarBits) {
         // Planes: mean and variance in two arrays; else one array, variance after the mean.
         const size_t len = size_t(stride) * size_t(n) + 64;
         std::vector<float> want(2 * len, -7.0f), got(2 * len, -7.0f);
-        auto run = [&](WindowIsa isa, std::vector<float>& out) {
+        auto run = [&](Isa isa, std::vector<float>& out) {
           float* const mean = out.data() + offset;
           float* const var = stride == 1 ? out.data() + len : mean + 1;
-          centred_window3_row(isa, r0, r1, r2, n, mean, var, stride);
+          centred_window3_kernels(isa).row(r0, r1, r2, n, mean, var, stride);
         };
-        run(WindowIsa::scalar, want);
-        for (const WindowIsa isa : isas) {
+        run(Isa::scalar, want);
+        for (const Isa isa : isas) {
           std::fill(got.begin(), got.end(), -7.0f);
           run(isa, got);
           ASSERT_EQ(std::memcmp(want.data(), got.data(), want.size() * sizeof(float)), 0)
               << "n " << n << " stride " << stride << " offset " << offset << " isa "
-              << int(isa);
+              << isa_name(isa);
           ++compared;
         }
       }
@@ -128,8 +127,8 @@ TEST(CentredWindow3, MeanAndVarianceWithinTheirAnalysedBounds) {
   }
   for (const Rows& rows : cases) {
     std::vector<float> mean(size_t(rows.n)), var(size_t(rows.n));
-    centred_window3_row(WindowIsa::scalar, rows.r[0].data(), rows.r[1].data(), rows.r[2].data(),
-                        rows.n, mean.data(), var.data(), 1);
+    centred_window3_kernels(Isa::scalar)
+        .row(rows.r[0].data(), rows.r[1].data(), rows.r[2].data(), rows.n, mean.data(), var.data(), 1);
     for (int x = 0; x < rows.n; ++x) {
       long double m, v;
       exact_moments(rows, x, m, v);

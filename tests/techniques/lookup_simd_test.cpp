@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "techniques/light_map.h"
 #include "techniques/map_lookup_simd.h"
 #include "techniques/map_receiver.h"
@@ -83,13 +83,12 @@ LightMap threshold_map(const Case& c, const MapParams& p, uint32_t seed) {
 
 void lookup_with(const char* scalar, const Case& c, const MapParams& p, const LightMap& map,
                  ImageF& mask, ImageU32& texels) {
-  setenv("SHADOWLAB_SCALAR", scalar, 1);
+  const ScopedIsa isa(std::string(scalar) == "1" ? Isa::scalar : cpu_isa());
   lookup_light_map(c.scene, c.g, p, map, mask, &texels);
-  unsetenv("SHADOWLAB_SCALAR");
 }
 
 TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   struct Config {
     FaceLayoutKind layout;
     float bias, slope;
@@ -143,7 +142,7 @@ TEST(LookupSimd, KernelsMatchTheScalarOracleAtTheThreshold) {
 // The filtering techniques' 8-lane batches (VSM, ESM, EVSM, MSM, rotated Poisson PCF: gathers, then the arithmetic in
 // AVX2) against their scalar oracle on random maps, blurred by their own filter: bit for bit.
 TEST(LookupSimd, FilterBatchesMatchTheScalarOracle) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   struct Config {
     FaceLayoutKind layout;
     MapFilter filter;
@@ -236,7 +235,7 @@ Receivers8 edge_receivers(std::mt19937& rng, int trial) {
 // bilinear_taps + bilinear_indices, on faces 1, 2 and 9 texels wide, with lanes clamped at
 // every edge, inactive lanes, and two planes whose texel values are all distinct.
 TEST(LookupSimd, BilinearTapsMatchTheScalarTapsAtEveryEdge) {
-  const Bilinear8Fn bilinear8 = bilinear8_simd();
+  const Bilinear8Fn bilinear8 = lookup_kernels(cpu_isa()).bilinear8;
   if (!bilinear8) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
   const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
   MapLookupConsts c;
@@ -339,7 +338,8 @@ void check_interleaved_taps(Bilinear8x2Fn kernel, int n_values) {
 }
 
 TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
-  const Bilinear8x2Fn two = bilinear8_interleaved2_simd(), four = bilinear8_interleaved4_simd();
+  const LookupKernels& kernels = lookup_kernels(cpu_isa());
+  const Bilinear8x2Fn two = kernels.bilinear8_interleaved2, four = kernels.bilinear8_interleaved4;
   if (!two || !four) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
   check_interleaved_taps(two, 2);
   check_interleaved_taps(four, 4);
@@ -350,7 +350,7 @@ TEST(LookupSimd, InterleavedBilinearTapsMatchTheScalarTapsAtEveryEdge) {
 // double with bilinear_weights' w, bit for bit, on faces 1, 2 and 9 texels wide (the lane-by-lane
 // fallback, the edge-clamped lanes and the wide loads), and zeros in the inactive lanes.
 TEST(LookupSimd, BilinearMixOfFourValuesIsTheScalarSumAtEveryEdge) {
-  const Mix8x4Fn mix = bilinear8_mix4_simd();
+  const Mix8x4Fn mix = lookup_kernels(cpu_isa()).bilinear8_mix4;
   if (!mix) GTEST_SKIP() << "no AVX2 here (or SHADOWLAB_SCALAR=1)";
   const int widths[3] = {1, 2, 9}, heights[3] = {3, 1, 5};
   MapLookupConsts c;
@@ -419,11 +419,14 @@ TEST(LookupSimd, Merge8IsThePixelLoopsClampPerLane) {
     }
     float mask[8];
     uint32_t texels[8];
-    merge8(r, vis, mask, texels);
-    for (int k = 0; k < 8; ++k) {
-      const float want = r.active[k] ? std::clamp(vis[k], 0.0f, 1.0f) : r.mask[k];
-      EXPECT_EQ(std::memcmp(&mask[k], &want, 4), 0) << "pattern " << pattern << " lane " << k;
-      EXPECT_EQ(texels[k], uint32_t(100 + k));
+    for (const Isa isa : cpu_isas()) {
+      lookup_kernels(isa).merge8(r, vis, mask, texels);
+      for (int k = 0; k < 8; ++k) {
+        const float want = r.active[k] ? std::clamp(vis[k], 0.0f, 1.0f) : r.mask[k];
+        EXPECT_EQ(std::memcmp(&mask[k], &want, 4), 0)
+            << "pattern " << pattern << " lane " << k << " " << isa_name(isa);
+        EXPECT_EQ(texels[k], uint32_t(100 + k));
+      }
     }
   }
 }

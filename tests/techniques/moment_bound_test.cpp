@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 
 namespace shadowlab {
 namespace {
@@ -288,18 +288,18 @@ void expect_scalar_bits(int lanes, const Kernel& kernel) {
 }
 
 TEST(MomentBound, AvxLanesGiveTheScalarBits) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
   expect_scalar_bits(4, intensity4);
   expect_scalar_bits(8, intensity4x2);
 }
 
 TEST(MomentBound, Avx512LanesGiveTheScalarBits) {
-  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
   expect_scalar_bits(8, intensity8);
 }
 
 TEST(MomentBound, Avx512GroupsOfLanesGiveTheScalarBits) {
-  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512 on this CPU";
+  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
   expect_scalar_bits(32, intensity8x4);
 }
 #endif

@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "core/cpu_features.h"
+#include "core/isa.h"
 #include "techniques/moment_filter.h"
 #include "techniques/texel_tiles.h"
 
@@ -190,15 +190,12 @@ TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
   fixed_width_kernels_equal_the_runtime_width_loops();
 }
 
-// The same with the AVX-512 rows switched off (SHADOWLAB_ISA=avx2, read at each filter call):
-// on an AVX-512 machine the AVX2 exp, log and warp rows run only here.
+// The same with the AVX-512 rows switched off (as SHADOWLAB_ISA=avx2 does): on an AVX-512
+// machine the AVX2 exp, log and warp rows run only here.
 TEST(MomentFilter, Avx2KernelsEqualTheRuntimeWidthLoopsBitForBit) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
-  struct IsaGuard {
-    IsaGuard() { setenv("SHADOWLAB_ISA", "avx2", 1); }
-    ~IsaGuard() { unsetenv("SHADOWLAB_ISA"); }
-  } guard;
-  ASSERT_FALSE(use_avx512_paths());
+  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  const ScopedIsa guard(Isa::avx2);
+  ASSERT_NE(process_isa(), Isa::avx512);
   fixed_width_kernels_equal_the_runtime_width_loops();
 }
 

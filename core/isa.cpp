@@ -1,0 +1,68 @@
+#include "core/isa.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+
+namespace shadowlab {
+namespace {
+
+Isa detect_cpu_isa() {
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  return Isa::avx512;
+#elif defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) return Isa::scalar;
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512dq"))
+    return Isa::avx512;
+  return Isa::avx2;
+#else
+  return Isa::scalar;
+#endif
+}
+
+Isa resolve_process_isa() {
+  Isa isa = cpu_isa();
+  const char* scalar = std::getenv("SHADOWLAB_SCALAR");
+  if (scalar && std::strcmp(scalar, "1") == 0) return Isa::scalar;
+  const char* named = std::getenv("SHADOWLAB_ISA");
+  if (named && std::strcmp(named, "avx2") == 0 && isa > Isa::avx2) isa = Isa::avx2;
+  return isa;
+}
+
+// ScopedIsa's override: -1 when none, else the Isa's value.
+std::atomic<int> g_override{-1};
+
+}  // namespace
+
+const char* isa_name(Isa isa) {
+  switch (isa) {
+    case Isa::avx2: return "avx2";
+    case Isa::avx512: return "avx512";
+    default: return "scalar";
+  }
+}
+
+Isa cpu_isa() {
+  static const Isa isa = detect_cpu_isa();
+  return isa;
+}
+
+std::vector<Isa> cpu_isas() {
+  std::vector<Isa> isas;
+  for (int i = 0; i <= int(cpu_isa()); ++i) isas.push_back(Isa(i));
+  return isas;
+}
+
+Isa process_isa() {
+  const int forced = g_override.load(std::memory_order_relaxed);
+  if (forced >= 0) return Isa(forced);
+  static const Isa isa = resolve_process_isa();
+  return isa;
+}
+
+ScopedIsa::ScopedIsa(Isa isa) : previous_(g_override.exchange(int(isa))) {}
+ScopedIsa::~ScopedIsa() { g_override.store(previous_); }
+
+}  // namespace shadowlab

@@ -1,0 +1,47 @@
+#pragma once
+// The instruction sets of the SIMD kernels, and the one place that chooses among them
+// (docs/simd.md).
+//
+// Every kernel family has a scalar table, its oracle, and tables for AVX2 and AVX-512 that give
+// the scalar table's bits (-ffp-contract=off, the same operations in the same order). The
+// process runs the table of process_isa(): the widest set this CPU runs, narrowed by the
+// environment — SHADOWLAB_SCALAR=1 gives scalar, SHADOWLAB_ISA=avx2 gives at most AVX2 (so that
+// both vector tables are measured and tested on one AVX-512 machine). The mains check those
+// variables strictly before any work (experiments/environment.cpp); here an unset, empty or
+// other value leaves the CPU's choice.
+#include <vector>
+
+namespace shadowlab {
+
+// Ordered: a CPU that runs one runs every smaller one.
+enum class Isa { scalar = 0, avx2 = 1, avx512 = 2 };
+
+// "scalar", "avx2", "avx512".
+const char* isa_name(Isa isa);
+
+// The widest set this CPU runs: avx512 needs AVX-512 F, VL and DQ (and AVX2); avx2 needs AVX2
+// and FMA. The emulated build (core/simd_emulation.h) runs every kernel through SIMDe, so there
+// every CPU runs avx512.
+Isa cpu_isa();
+
+// Every set this CPU runs, scalar first: what the tests compare against the scalar table.
+std::vector<Isa> cpu_isas();
+
+// The set this process's kernels use: cpu_isa() narrowed by SHADOWLAB_SCALAR and
+// SHADOWLAB_ISA, read once, at the first call.
+Isa process_isa();
+
+// For tests: process_isa() returns `isa` while this lives (the previous choice after), so that
+// one test binary runs the callers of every table. Not for concurrent use with other overrides.
+class ScopedIsa {
+ public:
+  explicit ScopedIsa(Isa isa);
+  ~ScopedIsa();
+  ScopedIsa(const ScopedIsa&) = delete;
+  ScopedIsa& operator=(const ScopedIsa&) = delete;
+
+ private:
+  int previous_;
+};
+
+}  // namespace shadowlab
