@@ -32,7 +32,7 @@ inline constexpr double kExp2Sixteenths[16] = {
 // e^x for x in [-700, 700] (the ESM filter's arguments lie in [0, 700]).
 // x = (16q + j)·ln2/16 + r, |r| <= ln2/32: e^x = 2^q · 2^(j/16) · e^r. The table step makes the
 // polynomial 7 terms where e^r over |r| <= ln2/2 needed 13: the ESM and EVSM filters' exps were
-// about half of their time (README "Technique benchmark").
+// about half of their time (docs/performance.md).
 inline double exp_d(double x) {
   // 16q + j by round-to-nearest through the 1.5·2^52 shifter (exact for |16x·log2e| < 2^51);
   // ln2/16 split so that its high part times any |16q + j| < 2^14 is exact.
@@ -142,7 +142,7 @@ inline float exp_f(float x) {
 
 // e^x for float x in [-708, 708] as a double: exp_f's float steps, then p · 2^ni in double, whose
 // range holds e^700 (float's ends at e^88.7). Within 2.5 float ulps (3e-7) of e^x
-// (tests/core/exp_log_test.cpp). The ESM filter's exponentials (README "Techniques", ESM): its
+// (tests/core/exp_log_test.cpp). The ESM filter's exponentials (docs/techniques/esm.md): its
 // terms e^(c·(d − d_min)) reach e^700, and float precision is what its float map keeps.
 inline double exp_wide(float x) {
   int32_t ni;
@@ -168,8 +168,8 @@ inline float ln_m_f(float mf) {
 // (absolute; tests/core/exp_log_test.cpp). x = 2^e · m exactly, m in [0.75, 1.5) (mantissas
 // from 1.5 up taken to the next octave, as log_d does, so that no sum cancels); then ln m in
 // float: m rounded to float, s = (m − 1)/(m + 1) (|s| <= 0.2), 2·atanh(s) to s^9 (truncation
-// below 4e-9), and e·ln2 + ln m in double. The ESM filter's logarithms (README "Techniques",
-// ESM): its arguments lie in [1, e^700], beyond float's range, and it stores a float.
+// below 4e-9), and e·ln2 + ln m in double. The ESM filter's logarithms (docs/techniques/esm.md):
+// its arguments lie in [1, e^700], beyond float's range, and it stores a float.
 inline double log_wide(double x) {
   const uint64_t bits = std::bit_cast<uint64_t>(x);
   const uint64_t up = (bits >> 51) & 1;  // mantissa >= 1.5
@@ -428,7 +428,7 @@ SL_TARGET("avx2") inline void log_wide8(__m256d x_lo, __m256d x_hi, __m256d& lo,
 // log_wide's split of 8 positive normal doubles, x = m·2^e with m in [0.75, 1.5): getmant's
 // [0.75, 1.5) interval is that m exactly (the [1, 2) mantissa, halved from 1.5 on), getexp the
 // exponent of x's [1, 2) form, one more where the mantissa was halved; the two instructions do
-// what log_wide's eleven integer steps do (README "Technique benchmark", fifteenth session).
+// what log_wide's eleven integer steps do, in fewer instructions.
 // Returns m as floats; e as doubles (exact integers). The zero-masked forms with every lane on:
 // GCC 12's unmasked ones trip -Wmaybe-uninitialized, as in exp_d8.
 SL_TARGET("avx512f") inline __m256 log_wide_m8(__m512d x, __m512d& e) {

@@ -36,7 +36,7 @@ void bilinear8(const MapLookupConsts& c, const Receivers8& r,
 // bilinear8 with plain loads instead of gathers: each lane's two taps of a row, (x0, y)
 // and (x0 + 1, y), are adjacent floats, so one 8-byte load fetches both (half the element
 // loads of the gathers, and no gather microcode, which costs most of the filters' lookups on
-// the AMD parts we measure on: README "Technique benchmark"). The pair starts at
+// the AMD parts we measure on: docs/performance.md). The pair starts at
 // clamp(ix, 0, w − 2), inside the row; a lane clamped at the left edge takes the pair's first
 // value for both taps, one at the right edge its second, so the taps are bilinear_taps' clamped
 // texels as before, bit for bit. Inactive lanes load texel 0 of face 0's plane and are zeroed,

@@ -179,8 +179,8 @@ void fused_box(int w, int h, int k, int planes, const FaceTiles* tiles, const fl
     // One uninitialized block, 64-byte aligned, its rows (row_len values) whole lines: a
     // kernel whose steps start at x = 0 of a row (MSM's AVX-512 row, msm_hsum_out_lines) then
     // never straddles two lines with a 64-byte load or store (with rows of w = 1030 floats, 24
-    // bytes past a line each, every one of them did: README "Technique benchmark", eighteenth
-    // session). Every value is written before it is read.
+    // bytes past a line each, every one of them did: docs/performance.md). Every value is
+    // written before it is read.
     constexpr size_t kLine = 64 / sizeof(T);
     const size_t row_len = (size_t(w) + kLine - 1) / kLine * kLine;
     const size_t ew = (size_t(w) + size_t(k) - 1 + kLine - 1) / kLine * kLine;

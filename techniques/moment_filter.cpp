@@ -106,7 +106,7 @@ SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, 
 // exact enough for the warp: its rounding moves v by at most ~4e-6 relative (the argument's
 // roundings, |x| <= 44.4, and exp_f's 2 ulp), which is what a change of d by 1–2 of its own
 // float ulps does (dv/v = 2c·dd, c <= 44.4); the variance, whose cancellation needs double, is
-// formed from the double sums as before (README "Techniques", EVSM).
+// formed from the double sums (docs/techniques/evsm.md).
 SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double sign, double* m1,
                                      double* m2) {
   const float sc = float(sign * c);
@@ -251,7 +251,7 @@ SL_TARGET("avx512f") inline __m512d sum_rows8(const double* const* rows, int x) 
 // products and positive part for both planes (rows[0 .. K − 1] the first moments', rows[K ..
 // 2K − 1] the second's), 8 texels at a time, zipped to (mean, variance) per texel and stored as
 // one 64-byte line per 8 texels with ordinary stores (VSM keeps its map in the caches for the
-// lookup: README "Technique benchmark"). What vsm_out_k into scratch and interleave_row did in
+// lookup: docs/performance.md). What vsm_out_k into scratch and interleave_row did in
 // two passes, in one; the same bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoops-
 // BitForBit). Texels before the first line and after the last whole 8 go one by one.
 template <int K>

@@ -9,7 +9,7 @@ namespace {
 
 // ESM's exponential of one row: out[x] = e^(c·(d − d_min)), d = finite_dist, by exp_wide of
 // the exponent rounded once to float: c·(d − d_min) in double (d − d_min is exact there), then
-// float. Why float precision is enough here: README "Techniques", ESM.
+// float. Why float precision is enough here: docs/techniques/esm.md, precision.
 inline float esm_exponent(float d, double c, double d_min) {
   return float(c * (double(d) - d_min));
 }

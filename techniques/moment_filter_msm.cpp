@@ -253,7 +253,7 @@ SL_TARGET("avx512f") void msm_hsum_out_lines(const float* ext, float* const* h,
 // bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit). Why one pass: the
 // output's non-temporal stores (16 B a texel, ~35 MB a cube on the default scene) had a pass of
 // their own while the row sums' pass wrote nothing; here the arithmetic can run while they drain
-// (~8 % off the cube filter on Zen 5: README "Technique benchmark", seventeenth session).
+// (~8 % off the cube filter on Zen 5: docs/performance.md).
 template <int K>
 SL_TARGET("avx512f") void msm_hsum_out_avx512(const float* ext, float* const* h,
                                               const float* const* rows, int w, float inv,
@@ -392,7 +392,7 @@ void power_moments(const float* dist, int w, int h, int k, bool fixed_kernels,
   // The interleaved row is made in tmp after the four planes' rows, then streamed into the map
   // (core/stream_copy.h): 16 B per texel is beyond the caches (~35 MB on the default scene's
   // cube), and not reading each line before writing it made the filter 0.55 ms faster and the
-  // lookup 0.2 ms slower (AMD EPYC, README "Technique benchmark").
+  // lookup 0.2 ms slower (AMD EPYC: docs/performance.md).
   const StreamCopy copy = stream_copy_kernel();
 #if defined(__x86_64__)
   const Isa isa = interleaved ? exp_path(true) : Isa::scalar;
