@@ -97,7 +97,8 @@ std::string spec_with(const std::string& name, const std::string& context, const
 
 TEST(TechniqueKeys, DeclaredRangesAreWhatParsingAccepts) {
   size_t checked = 0;
-  for (const auto& [name, description] : technique_list()) {
+  for (const auto& entry : technique_list()) {
+    const std::string name = entry.first;  // a plain variable: lambdas below capture it
     const std::vector<KeyInfo> keys = technique_keys(name, "t");
     ASSERT_FALSE(keys.empty()) << name;
     for (const KeyInfo& k : keys) {
