@@ -19,6 +19,15 @@ inline double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The median, smallest and largest of a benchmark's samples (none: all 0).
+struct Stat {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+inline Stat stat_of(const std::vector<double>& v) {
+  if (v.empty()) return {};
+  return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
+}
+
 // Runs fn() `repeats` times and returns the median wall time in milliseconds.
 template <class Fn>
 double median_ms(int repeats, Fn&& fn) {

@@ -20,14 +20,6 @@ using namespace shadowlab;
 
 namespace {
 
-struct Stat {
-  double median, min, max;
-};
-
-Stat stat_of(const std::vector<double>& v) {
-  return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
-}
-
 template <class Fn>
 Stat time_it(int repeats, Fn&& fn) {
   fn();  // warm-up: first-touch allocation and thread start-up are not what is measured

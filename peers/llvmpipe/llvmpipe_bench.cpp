@@ -26,14 +26,6 @@ using namespace shadowlab;
 
 namespace {
 
-struct Stat {
-  double median, min, max;
-};
-
-Stat stat_of(const std::vector<double>& v) {
-  return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
-}
-
 template <class Fn>
 double time_ms(Fn&& fn) {
   const auto s = std::chrono::steady_clock::now();
