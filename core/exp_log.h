@@ -152,7 +152,7 @@ inline double exp_wide(float x) {
 
 // ln m for float m in [0.75, 1.5): s = (m − 1)/(m + 1) (|s| <= 0.2), 2·atanh(s) to s^9
 // (truncation below 4e-9), in float. The mantissa step of log_wide and of the ESM filter's
-// float tiles (techniques/esm_float_tiles.cpp).
+// float tiles (techniques/filters/esm/esm_float_tiles.cpp).
 inline float ln_m_f(float mf) {
   const float s = (mf - 1.0f) / (mf + 1.0f);
   const float s2 = s * s;
@@ -183,7 +183,7 @@ inline double log_wide(double x) {
 
 // log_wide's split of a positive normal float: x = 2^e · m exactly, m in [0.75, 1.5) (mantissas
 // from 1.5 up taken to the next octave, so that ln m by ln_m_f never cancels against e·ln2).
-// The ESM filter's float tiles (techniques/esm_float_tiles.h) take ln x as e·ln2 + ln_m_f(m).
+// The ESM filter's float tiles (techniques/filters/esm/esm_float_tiles.h) take ln x as e·ln2 + ln_m_f(m).
 inline float log_split_f(float x, int32_t& e) {
   const uint32_t bits = std::bit_cast<uint32_t>(x);
   const uint32_t up = (bits >> 22) & 1;  // mantissa >= 1.5

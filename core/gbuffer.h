@@ -14,7 +14,7 @@ constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
 // Bounds of the covered pixels' positions in one kGBufferBlock × kGBufferBlock block of the image
 // (world space, metres); lo > hi when the block has no covered pixel, ±inf when a position is
 // not finite. A hierarchy over the positions, like a depth pyramid: the light-map pipeline's
-// faces-needed stage decides whole blocks from them (techniques/faces_needed.h).
+// faces-needed stage decides whole blocks from them (techniques/pipeline/faces_needed.h).
 constexpr int kGBufferBlock = 16;
 struct BlockBounds {
   vec3 lo{std::numeric_limits<float>::infinity()};

@@ -2,7 +2,7 @@
 // The GBuffer's deferred shading attributes: a pixel's shading normal and texture coordinate,
 // interpolated over its visible triangle at its position. The camera pass (raster/
 // gbuffer_pass.h) does not store them: no technique, reference or metric reads them, only the
-// pictures for people (techniques/scene_shading.h, techniques/projector_shading.h), and
+// pictures for people (techniques/shading/scene_shading.h, techniques/shading/projector_shading.h), and
 // writing them for every pixel cost about a fifth of the pass (docs/performance_history.md).
 #include <cstddef>
 

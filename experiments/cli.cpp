@@ -28,7 +28,7 @@
 #include "scenes/gltf_loader.h"
 #include "scenes/scene_file.h"
 #include "scenes/scene_library.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

@@ -1,4 +1,4 @@
-// depth_precision: the stored-depth precision of a shadow map (techniques/depth_quantize.h:
+// depth_precision: the stored-depth precision of a shadow map (techniques/pipeline/depth_quantize.h:
 // float32, 16-bit, 8-bit linear, Everitt's 8-bit cubic ramp) against the ray-traced reference,
 // every submetric plus time, on two scenes: the default room with its cube map, and the bunny
 // under its slide projector with the projector's map. Tables on stdout; CSV, JSON and masks in
@@ -12,8 +12,8 @@
 #include "experiments/output_folder.h"
 #include "experiments/sweep.h"
 #include "raytrace/reference_cache.h"
-#include "techniques/depth_quantize.h"
-#include "techniques/technique.h"
+#include "techniques/pipeline/depth_quantize.h"
+#include "techniques/registry/technique.h"
 
 using namespace shadowlab;
 

@@ -17,7 +17,7 @@
 #include "experiments/flicker_run.h"
 #include "experiments/memory_check.h"
 #include "experiments/provenance.h"
-#include "techniques/technique_spec.h"
+#include "techniques/registry/technique_spec.h"
 
 using namespace shadowlab;
 

@@ -11,7 +11,7 @@
 #include "experiments/contact_sheet.h"
 #include "experiments/view_check.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 

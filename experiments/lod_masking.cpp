@@ -22,8 +22,8 @@
 #include "metric/image_error.h"
 #include "metric/ssim.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/projector_shading.h"
-#include "techniques/technique.h"
+#include "techniques/shading/projector_shading.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/scene.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 

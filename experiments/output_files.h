@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 

@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "core/spec.h"
 #include "core/parse_number.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

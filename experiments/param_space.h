@@ -44,7 +44,7 @@ bool same_space(const ParamSpace& a, const ParamSpace& b);
 std::string space_point(const ParamSpace& space, size_t i);
 
 // tune's spaces without --space: per technique of a fixed list, its keys that declare
-// a tune domain (techniques/technique_keys.h, technique_tune_space).
+// a tune domain (techniques/registry/technique_keys.h, technique_tune_space).
 std::vector<std::string> default_param_spaces();
 
 // The values of one domain text (the part after '=').

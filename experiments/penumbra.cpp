@@ -1,4 +1,4 @@
-// penumbra: the penumbra-width model (techniques/penumbra_model.h) against penumbrae measured
+// penumbra: the penumbra-width model (techniques/filters/pcss/penumbra_model.h) against penumbrae measured
 // on the Embree soft reference (docs/techniques/pcss.md). Each case is a line of
 // floor points crossing one shadow edge, from the shadow out into the light; the reference and
 // PCSS (classic and estimate=model) are evaluated at exactly those points (a one-row GBuffer),
@@ -19,8 +19,8 @@
 #include "experiments/memory_check.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
-#include "techniques/penumbra_model.h"
-#include "techniques/technique.h"
+#include "techniques/filters/pcss/penumbra_model.h"
+#include "techniques/registry/technique.h"
 
 using namespace shadowlab;
 

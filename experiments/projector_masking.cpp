@@ -11,7 +11,7 @@
 #include "experiments/output_folder.h"
 #include "experiments/lod_masking.h"
 #include "raytrace/reference_cache.h"
-#include "techniques/technique_spec.h"
+#include "techniques/registry/technique_spec.h"
 
 using namespace shadowlab;
 

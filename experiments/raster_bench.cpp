@@ -14,7 +14,7 @@
 #include "experiments/cli.h"
 #include "raster/depth_kernels.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/light_map.h"
+#include "techniques/pipeline/light_map.h"
 
 using namespace shadowlab;
 

@@ -1,5 +1,5 @@
 // render: one technique on one scene → mask.exr, mask.png, texel.exr, timing.json and the shaded
-// image shaded.exr (linear) and shaded.png (sRGB) (techniques/scene_shading.h).
+// image shaded.exr (linear) and shaded.png (sRGB) (techniques/shading/scene_shading.h).
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -12,10 +12,10 @@
 #include "experiments/memory_check.h"
 #include "experiments/output_files.h"
 #include "experiments/output_folder.h"
-#include "techniques/scene_shading.h"
+#include "techniques/shading/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
-#include "techniques/projector_shading.h"
+#include "techniques/shading/projector_shading.h"
 
 using namespace shadowlab;
 

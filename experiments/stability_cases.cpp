@@ -9,7 +9,7 @@
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

@@ -26,7 +26,7 @@
 #include "experiments/output_files.h"
 #include "experiments/provenance.h"
 #include "metric/flip.h"
-#include "techniques/scene_shading.h"
+#include "techniques/shading/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 
 namespace shadowlab {

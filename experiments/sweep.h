@@ -10,7 +10,7 @@
 #include "core/image.h"
 #include "experiments/pareto_plot.h"
 #include "metric/shadow_metric.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 
@@ -24,7 +24,7 @@ struct SweepConfig {
   bool progress = false;        // progress line with ETA on stderr
   double target_fps = 30.0;     // performance score T_ref = 1/fps
   uint64_t max_memory = 0;      // refuse runs estimated above this many bytes (0: what is available)
-  float ambient = 0.1f;         // ambient level of the shaded images (techniques/scene_shading.h)
+  float ambient = 0.1f;         // ambient level of the shaded images (techniques/shading/scene_shading.h)
   bool shaded_sheet = false;    // contact sheet of shaded images (--sheet shaded), else masks
   bool flip_map = false;        // write each row's FLIP error map of the shaded image (--flip-map)
   int shard = 0, shards = 1;    // run only rows with index mod shards == shard (--shard i/N)

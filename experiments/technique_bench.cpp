@@ -12,7 +12,7 @@
 #include "experiments/view_check.h"
 #include "experiments/cli.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 using namespace shadowlab;
 

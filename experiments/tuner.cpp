@@ -14,7 +14,7 @@
 #include "experiments/memory_check.h"
 #include "experiments/pareto_plot.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/technique_spec.h"
+#include "techniques/registry/technique_spec.h"
 
 namespace shadowlab {
 namespace {

@@ -18,7 +18,7 @@
 #include "core/scene.h"
 #include "experiments/param_space.h"
 #include "metric/shadow_metric.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 

@@ -9,7 +9,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "techniques/light_faces.h"
+#include "techniques/pipeline/light_faces.h"
 
 namespace shadowlab {
 namespace {

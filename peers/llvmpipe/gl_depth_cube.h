@@ -4,7 +4,7 @@
 // face, no colour), an empty fragment shader, no face culling. One render is, per face: bind
 // its framebuffer, set the viewport, clear depth, set the face's view-projection, draw every
 // triangle; then glFinish, so the time covers the rasterization and not only its submission.
-// The faces are the light's cube faces of techniques/light_faces.h with shadowlab's own
+// The faces are the light's cube faces of techniques/pipeline/light_faces.h with shadowlab's own
 // world-to-clip matrices (face_view_proj), between the light's near and far.
 #include <cstdint>
 #include <vector>
@@ -32,7 +32,7 @@ void render_gl_depth_cube(const GlDepthCube& cube);
 
 // Per face, res² radial distances from the light in metres (+inf where no surface was drawn),
 // recovered from the stored depth at each texel centre, rows top (v = +1) first as in
-// techniques/light_faces.h: the images to check against shadowlab's.
+// techniques/pipeline/light_faces.h: the images to check against shadowlab's.
 std::vector<std::vector<float>> gl_radial_distances(const GlDepthCube& cube);
 
 void destroy_gl_depth_cube(GlDepthCube& cube);

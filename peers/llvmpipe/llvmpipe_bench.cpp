@@ -19,8 +19,8 @@
 #include "experiments/cli.h"
 #include "gl_depth_cube.h"
 #include "raster/depth_kernels.h"
-#include "techniques/face_render.h"
-#include "techniques/light_faces.h"
+#include "techniques/pipeline/face_render.h"
+#include "techniques/pipeline/light_faces.h"
 
 using namespace shadowlab;
 

@@ -15,7 +15,7 @@
 
 #include "experiments/run_process.h"
 #include "scenes/scene_registry.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 #include "test_paths.h"
 
 namespace shadowlab {

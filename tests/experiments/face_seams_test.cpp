@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "experiments/stability_cases.h"
-#include "techniques/light_map.h"
+#include "techniques/pipeline/light_map.h"
 
 namespace shadowlab {
 namespace {

@@ -11,7 +11,7 @@
 #include "experiments/flicker_run.h"
 #include "raster/gbuffer_pass.h"
 #include "scenes/scene_library.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

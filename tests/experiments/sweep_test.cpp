@@ -7,7 +7,7 @@
 #include "experiments/contact_sheet.h"
 #include "experiments/sweep.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/scene_shading.h"
+#include "techniques/shading/scene_shading.h"
 
 namespace shadowlab {
 namespace {

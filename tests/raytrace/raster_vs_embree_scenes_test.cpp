@@ -129,7 +129,7 @@ struct TriangleIdShader {
   }
 };
 
-// Cube-face views of a light (same axes as techniques/cube_faces.cpp: +X −X +Y −Y +Z −Z).
+// Cube-face views of a light (same axes as techniques/pipeline/cube_faces.cpp: +X −X +Y −Y +Z −Z).
 mat4 light_face_view(vec3 light, int face) {
   static const vec3 kForward[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};

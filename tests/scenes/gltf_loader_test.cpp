@@ -18,8 +18,8 @@
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"
 #include "scenes/gltf_loader.h"
-#include "techniques/scene_shading.h"
-#include "techniques/technique.h"
+#include "techniques/shading/scene_shading.h"
+#include "techniques/registry/technique.h"
 #include "test_paths.h"
 
 namespace shadowlab {

@@ -11,7 +11,7 @@
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"
 #include "scenes/scene_registry.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

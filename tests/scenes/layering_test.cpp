@@ -13,7 +13,8 @@
 namespace shadowlab {
 namespace {
 
-// Every `#include "x/..."` folder (x) and every `#include <embree...>` of the folder's files.
+// Every `#include "x/..."` folder (x) and every `#include <embree...>` of the folder's files,
+// its sub-folders' included (techniques/ is in sub-folders by role, docs/layout.md).
 struct Includes {
   std::vector<std::pair<std::string, std::string>> quoted;  // (file, included path)
   std::vector<std::string> embree;                          // files including Embree
@@ -21,15 +22,18 @@ struct Includes {
 
 Includes read_includes(const std::string& folder) {
   Includes out;
-  for (const auto& e : std::filesystem::directory_iterator(test::source_path(folder))) {
+  const std::filesystem::path root = test::source_path(folder);
+  for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
     const std::string ext = e.path().extension().string();
     if (ext != ".h" && ext != ".cpp" && ext != ".inl") continue;
     std::ifstream in(e.path());
     std::string line;
     while (std::getline(in, line)) {
       if (line.rfind("#include \"", 0) == 0)
-        out.quoted.push_back({e.path().filename().string(), line.substr(10, line.find('"', 10) - 10)});
-      if (line.rfind("#include <embree", 0) == 0) out.embree.push_back(e.path().filename().string());
+        out.quoted.push_back({std::filesystem::relative(e.path(), root).generic_string(),
+                              line.substr(10, line.find('"', 10) - 10)});
+      if (line.rfind("#include <embree", 0) == 0)
+        out.embree.push_back(std::filesystem::relative(e.path(), root).generic_string());
     }
   }
   return out;

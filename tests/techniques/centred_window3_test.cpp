@@ -1,4 +1,4 @@
-// The centred 3 × 3 window of VSM's and EVSM's k = 3 filter (techniques/centred_window3.h):
+// The centred 3 × 3 window of VSM's and EVSM's k = 3 filter (techniques/filters/moments_common/centred_window3.h):
 // its vector kernels against its scalar loop bit for bit, and its float mean and variance
 // against the same nine values' moments in long double, within the header's analysed bounds.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/isa.h"
-#include "techniques/centred_window3.h"
+#include "techniques/filters/moments_common/centred_window3.h"
 
 namespace shadowlab {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "techniques/cube_faces.h"
+#include "techniques/pipeline/cube_faces.h"
 
 namespace shadowlab {
 namespace {

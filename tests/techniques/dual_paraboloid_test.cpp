@@ -1,4 +1,4 @@
-// The dual-paraboloid layout (techniques/light_faces.h, raster/paraboloid.h): its map and its
+// The dual-paraboloid layout (techniques/pipeline/light_faces.h, raster/paraboloid.h): its map and its
 // inverse, render and lookup agreeing on where a direction lands, and its shadows against
 // Embree's, with the linear-interpolation error falling as tess splits long edges.
 #include <gtest/gtest.h>
@@ -12,9 +12,9 @@
 #include "core/gbuffer.h"
 #include "scenes/mesh_builders.h"
 #include "raster/paraboloid.h"
-#include "techniques/light_faces.h"
-#include "techniques/paraboloid_tess.h"
-#include "techniques/technique.h"
+#include "techniques/pipeline/light_faces.h"
+#include "techniques/pipeline/paraboloid_tess.h"
+#include "techniques/registry/technique.h"
 #include "test_scenes.h"
 
 namespace shadowlab {

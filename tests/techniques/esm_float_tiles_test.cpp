@@ -1,4 +1,4 @@
-// ESM's float tiles (techniques/esm_float_tiles.h): which tiles they take, their values against
+// ESM's float tiles (techniques/filters/esm/esm_float_tiles.h): which tiles they take, their values against
 // long double within the header's analysed bound, and their vector kernels against their scalar
 // ones bit for bit.
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "techniques/esm_float_tiles.h"
-#include "techniques/moment_filter.h"
-#include "techniques/texel_tiles.h"
+#include "techniques/filters/esm/esm_float_tiles.h"
+#include "techniques/filters/moments_common/moment_filter.h"
+#include "techniques/pipeline/texel_tiles.h"
 
 namespace shadowlab {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "techniques/light_map.h"
-#include "techniques/map_receiver.h"
+#include "techniques/pipeline/light_map.h"
+#include "techniques/lookup/map_receiver.h"
 #include "test_scenes.h"
 
 namespace shadowlab {

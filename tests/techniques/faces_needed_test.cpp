@@ -1,4 +1,4 @@
-// Stage 2 of the light-map pipeline (techniques/faces_needed.h): the block bounds the camera
+// Stage 2 of the light-map pipeline (techniques/pipeline/faces_needed.h): the block bounds the camera
 // pass leaves, the box test that decides a whole block, and the faces-needed set with blocks
 // against a brute-force walk of every pixel and every tap.
 #include <gtest/gtest.h>
@@ -7,9 +7,9 @@
 #include <cmath>
 #include <random>
 
-#include "techniques/faces_needed.h"
-#include "techniques/light_map.h"
-#include "techniques/map_receiver.h"
+#include "techniques/pipeline/faces_needed.h"
+#include "techniques/pipeline/light_map.h"
+#include "techniques/lookup/map_receiver.h"
 #include "test_scenes.h"
 
 namespace shadowlab {

@@ -18,7 +18,7 @@
 #include "raster/gbuffer_pass.h"
 #include "raytrace/embree_scene.h"
 #include "raytrace/visibility.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 #include "test_paths.h"
 
 namespace shadowlab {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "techniques/cube_faces.h"
-#include "techniques/light_faces.h"
+#include "techniques/pipeline/cube_faces.h"
+#include "techniques/pipeline/light_faces.h"
 
 namespace shadowlab {
 namespace {

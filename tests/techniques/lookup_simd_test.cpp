@@ -9,9 +9,9 @@
 #include <random>
 
 #include "core/isa.h"
-#include "techniques/light_map.h"
-#include "techniques/map_lookup_simd.h"
-#include "techniques/map_receiver.h"
+#include "techniques/pipeline/light_map.h"
+#include "techniques/lookup/map_lookup_simd.h"
+#include "techniques/lookup/map_receiver.h"
 
 namespace shadowlab {
 namespace {

@@ -1,10 +1,10 @@
-// The moment shadow map's reconstruction (techniques/moment_bound.h) against independent
+// The moment shadow map's reconstruction (techniques/filters/msm/moment_bound.h) against independent
 // computations: the Hankel solve against long-double Gaussian elimination; distributions whose
 // bound is known in closed form (two Dirac deltas, whose moments determine them; three atoms at
 // 0, u and 1 for the Hausdorff bound); the lower-bound property on random distributions; the
 // 16-bit quantization's matrices; the AVX2 lanes against the scalar bits.
 #include "core/simd_target.h"
-#include "techniques/moment_bound.h"
+#include "techniques/filters/msm/moment_bound.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

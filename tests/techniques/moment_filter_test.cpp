@@ -10,8 +10,8 @@
 #include <random>
 
 #include "core/isa.h"
-#include "techniques/moment_filter.h"
-#include "techniques/texel_tiles.h"
+#include "techniques/filters/moments_common/moment_filter.h"
+#include "techniques/pipeline/texel_tiles.h"
 
 namespace shadowlab {
 namespace {
@@ -33,7 +33,7 @@ void window_moments(const std::vector<float>& d, int w, int h, int k, int x, int
 // Depths 0.999 ± 1e-5: the true variance (~3e-11) is far below fp32's resolution of d² near 1
 // (1.2e-7), so the fp32 form returns noise while the double filter with centred storage keeps
 // 1e-3 relative accuracy, and the k = 3 centred float window its analysed 282·2^-24
-// (techniques/centred_window3.h).
+// (techniques/filters/moments_common/centred_window3.h).
 TEST(MomentFilter, VarianceNearFarPlaneSurvivesInDoubleNotInFp32) {
   for (const int k : {3, 5}) {
     const int w = 40, h = 30;
@@ -263,7 +263,7 @@ bool same_texel(const std::vector<float>& a, const std::vector<float>& b, size_t
   return std::memcmp(&a[at], &b[at], size_t(n) * 4) == 0;
 }
 
-// Every filter run with tiles (techniques/texel_tiles.h) writes, on the texels of the needed
+// Every filter run with tiles (techniques/pipeline/texel_tiles.h) writes, on the texels of the needed
 // tiles, the whole image's bits, and leaves every other texel as it was (here 7): spans at the
 // image's left and right edges, in the partial last column and row of tiles, a lone tile, and a
 // tile row with no span; box widths 1, 3, 5 and 11 (k = 11: the runtime-width loops), the slope

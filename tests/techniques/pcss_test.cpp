@@ -8,7 +8,7 @@
 #include "core/gbuffer.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 #include "test_scenes.h"
 
 namespace shadowlab {

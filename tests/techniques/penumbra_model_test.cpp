@@ -1,4 +1,4 @@
-// The penumbra-width model (techniques/penumbra_model.h) against independent geometry in long
+// The penumbra-width model (techniques/filters/pcss/penumbra_model.h) against independent geometry in long
 // double: the tangent rays of a disk emitter's rim to a sphere, and brute-force ray tests over
 // the emitter disk in 3-D.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "techniques/penumbra_model.h"
+#include "techniques/filters/pcss/penumbra_model.h"
 
 namespace shadowlab {
 namespace {

@@ -1,6 +1,6 @@
 // The Poisson-disk pattern of rotated Poisson PCF: n points inside the unit disk, spaced, and the
 // same for every call.
-#include "techniques/poisson_disk.h"
+#include "techniques/lookup/poisson_disk.h"
 
 #include <gtest/gtest.h>
 

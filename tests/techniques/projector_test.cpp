@@ -1,6 +1,6 @@
 // The slide projector in the techniques: the one-face projector layout, psm against the Embree
 // hard reference, the frustum gate of run_technique, stored depth precision (depth=), and the
-// shaded image (techniques/projector_shading.h).
+// shaded image (techniques/shading/projector_shading.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include "scenes/mesh_builders.h"
 #include "core/slide.h"
-#include "techniques/light_map.h"
-#include "techniques/depth_quantize.h"
-#include "techniques/light_faces.h"
-#include "techniques/projector_shading.h"
+#include "techniques/pipeline/light_map.h"
+#include "techniques/pipeline/depth_quantize.h"
+#include "techniques/pipeline/light_faces.h"
+#include "techniques/shading/projector_shading.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 

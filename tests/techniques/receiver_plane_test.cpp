@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "techniques/light_faces.h"
-#include "techniques/map_receiver.h"
+#include "techniques/pipeline/light_faces.h"
+#include "techniques/lookup/map_receiver.h"
 
 namespace shadowlab {
 namespace {

@@ -1,11 +1,11 @@
-// The shaded image (techniques/scene_shading.h) on the plane scene, where N·L is known in closed
+// The shaded image (techniques/shading/scene_shading.h) on the plane scene, where N·L is known in closed
 // form: the floor's normal is +y and the light 2 m above the origin, so a floor point (x, 0, z)
 // has N·L = 2 / √(x² + 4 + z²).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "techniques/scene_shading.h"
+#include "techniques/shading/scene_shading.h"
 #include "test_scenes.h"
 
 namespace shadowlab {

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "core/isa.h"
-#include "techniques/centred_window3.h"
-#include "techniques/face_rows.h"
-#include "techniques/map_lookup_simd.h"
+#include "techniques/filters/moments_common/centred_window3.h"
+#include "techniques/pipeline/face_rows.h"
+#include "techniques/lookup/map_lookup_simd.h"
 
 namespace shadowlab {
 namespace {

@@ -11,10 +11,10 @@
 
 #include "core/error.h"
 #include "core/parse_number.h"
-#include "techniques/map_filter.h"
-#include "techniques/map_params.h"
-#include "techniques/ray_traced.h"
-#include "techniques/technique.h"
+#include "techniques/pipeline/map_filter.h"
+#include "techniques/pipeline/map_params.h"
+#include "techniques/rt/ray_traced.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab {
 namespace {

@@ -2,7 +2,7 @@
 // Small helpers shared by the technique tests.
 #include "scenes/scene_library.h"
 #include "raster/gbuffer_pass.h"
-#include "techniques/technique.h"
+#include "techniques/registry/technique.h"
 
 namespace shadowlab::test {
 

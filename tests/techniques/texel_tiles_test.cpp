@@ -1,4 +1,4 @@
-// Stage 2's tiles (techniques/texel_tiles.h): the tiles found from the GBuffer's block bounds hold
+// Stage 2's tiles (techniques/pipeline/texel_tiles.h): the tiles found from the GBuffer's block bounds hold
 // every pixel's bilinear footprint (a brute-force walk of every pixel's scalar receiver), and
 // filtering only those tiles leaves every mask byte-identical to filtering whole faces, with
 // the other texels poisoned so that a lookup reading one would show.
@@ -10,9 +10,9 @@
 
 #include "core/block_bounds.h"
 #include "scenes/scene_library.h"
-#include "techniques/light_map.h"
-#include "techniques/map_filter.h"
-#include "techniques/map_receiver.h"
+#include "techniques/pipeline/light_map.h"
+#include "techniques/pipeline/map_filter.h"
+#include "techniques/lookup/map_receiver.h"
 #include "test_paths.h"
 #include "test_scenes.h"
 
