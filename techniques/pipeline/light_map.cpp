@@ -65,10 +65,14 @@ void lookup_light_map(const Scene& scene, const GBuffer& g, const MapParams& p,
 }
 
 const std::vector<const MapFilterOps*>& map_filters() {
-  static const std::vector<const MapFilterOps*> rows = {&kDepthCompare, &kVarianceMap,
-                                                        &kExponentialMap,
-                                                        &kExponentialVarianceMap,
-                                                        &kMomentShadowMap, &kPcss};
+  // The rows of techniques/filters/all.h, in its order.
+  static const std::vector<const MapFilterOps*> rows = {
+#define SHADOWLAB_FILTER(id, ops) &ops,
+#define SHADOWLAB_FILTER_KEYS(type, member)
+#include "techniques/filters/all.h"
+#undef SHADOWLAB_FILTER
+#undef SHADOWLAB_FILTER_KEYS
+  };
   return rows;
 }
 
@@ -76,7 +80,7 @@ const MapFilterOps& map_filter_ops(MapFilter id) {
   for (const MapFilterOps* f : map_filters())
     if (f->id == id) return *f;
   SL_CHECK(false);
-  return kDepthCompare;
+  return *map_filters().front();
 }
 
 namespace {

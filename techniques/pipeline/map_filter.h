@@ -1,11 +1,11 @@
 #pragma once
-// A filter of the light-map pipeline (techniques/pipeline/light_map.h): what a technique adds to a layout.
-// Each filter lives in one file that defines its row below: its own keys, its store + blur stage
-// and its lookup (depth_compare.cpp, variance_map.cpp, exponential_map.cpp,
-// exponential_variance_map.cpp, moment_shadow_map.cpp, pcss.cpp). The registry
-// (techniques/registry/technique.cpp) combines every layout with every row of map_filters(), so a new
-// filter is its file, a field in MapParams for its keys, one line in map_filters() and one enum
-// value (docs/extending.md).
+// A filter of the light-map pipeline (techniques/pipeline/light_map.h): what a technique adds to
+// a layout. Each filter is a folder under techniques/filters/ whose sources define its row below:
+// its own keys, its store + blur stage and its lookup; techniques/filters/all.h lists the
+// folders, one line each, and the declarations below, MapFilter, MapParams' keys members and
+// map_filters() all follow from that list. The registry (techniques/registry/technique.cpp)
+// combines every layout with every row of map_filters(), so a new filter is its folder and its
+// line in the list (docs/extending.md).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,12 +46,12 @@ struct MapFilterOps {
   bool wants_min_distance;
 };
 
-extern const MapFilterOps kDepthCompare;     // sm:  depth compare with PCF
-extern const MapFilterOps kVarianceMap;      // vsm: variance shadow map
-extern const MapFilterOps kExponentialMap;   // esm: exponential shadow map
-extern const MapFilterOps kExponentialVarianceMap;  // evsm: exponential variance shadow map
-extern const MapFilterOps kMomentShadowMap;  // msm: moment shadow map
-extern const MapFilterOps kPcss;             // pcss: percentage-closer soft shadows
+// Every filter's row (sm: kDepthCompare, vsm: kVarianceMap, …), defined in its folder.
+#define SHADOWLAB_FILTER(id, ops) extern const MapFilterOps ops;
+#define SHADOWLAB_FILTER_KEYS(type, member)
+#include "techniques/filters/all.h"
+#undef SHADOWLAB_FILTER
+#undef SHADOWLAB_FILTER_KEYS
 
 // MapFilterOps::by_tiles of a filter that goes by tiles under any params.
 inline bool map_filter_always_by_tiles(const MapParams&) { return true; }

@@ -5,7 +5,8 @@
 // projector's one face), d (dual-paraboloid) + sm (depth compare with PCF), vsm (variance), esm
 // (exponential), evsm, msm, pcss: csm, tsm, psm, dsm, cvsm, …, dpcss. One struct serves all of
 // them. Every key is declared once (techniques/registry/technique_keys.h): the shared keys and the
-// layouts' here (map_params.cpp), each filter's in its own file; map_keys() assembles a
+// layouts' here (map_params.cpp), each filter's in its folder (techniques/filters/all.h lists
+// them, and MapParams holds each one's keys struct); map_keys() assembles a
 // technique's list, which parsing, --help and docs/techniques/keys.md read. The keys a technique
 // does not declare are errors.
 #include <string>
@@ -16,9 +17,23 @@
 #include "techniques/registry/technique_keys.h"
 #include "techniques/registry/technique_spec.h"
 
+// The filters' keys structs (each filter's header, techniques/filters/all.h).
+#define SHADOWLAB_FILTER(id, ops)
+#define SHADOWLAB_FILTER_KEYS(type, member)
+#include "techniques/filters/all.h"
+#undef SHADOWLAB_FILTER
+#undef SHADOWLAB_FILTER_KEYS
+
 namespace shadowlab {
 
-enum class MapFilter { Depth, Variance, Exponential, ExponentialVariance, Moment, Pcss };
+// The filters, in the order of techniques/filters/all.h.
+enum class MapFilter {
+#define SHADOWLAB_FILTER(id, ops) id,
+#define SHADOWLAB_FILTER_KEYS(type, member)
+#include "techniques/filters/all.h"
+#undef SHADOWLAB_FILTER
+#undef SHADOWLAB_FILTER_KEYS
+};
 
 // How taps near a face's edge read their texels.
 //   Guard: every face is rendered wider by a guard band of (reach + 1) texels, so every tap
@@ -35,49 +50,6 @@ enum class PcfKind { Grid, Poisson };
 
 // The members below hold no defaults of their own: each key's default, range and meaning is its
 // declaration's (default_map_params stores them).
-
-// Keys of the variance filter (vsm; techniques/filters/vsm/variance_map.cpp).
-struct VsmKeys {
-  double min_variance{};  // variance floor, m²
-  double bleed{};         // light-bleeding reduction, p -> linstep(bleed, 1, p)
-  double maxdepth_eps{};  // > 0: a receiver deeper than the footprint's max + eps (m) is shadowed
-  bool slope_moment{};    // M2 = d² + ¼((∂d/∂x)² + (∂d/∂y)²) per texel
-  bool fp32{};            // moments filtered in float (the naive form), not double
-};
-
-// Keys of the exponential filter (esm; techniques/filters/esm/exponential_map.cpp).
-struct EsmKeys {
-  double c{};  // exponent on normalised distance (|p - L| / far)
-};
-
-// Keys of the exponential variance filter (evsm; techniques/filters/evsm/exponential_variance_map.cpp). The
-// exponents warp the normalised distance d' = 2d − 1 in [−1, 1].
-struct EvsmKeys {
-  int moments{};          // 2: the positive warp e^(c_pos·d'); 4: also −e^(−c_neg·d')
-  double c_pos{};         // positive exponent
-  double c_neg{};         // negative exponent
-  double min_variance{};  // variance floor of the distance, m², carried into each warp
-  double bleed{};         // light-bleeding reduction, as for vsm
-};
-
-// Keys of the moment filter (msm; techniques/filters/msm/moment_bound.h). The moments are filtered in float
-// and stored as 4 floats per texel, or (quantize16) through Peters & Klein's optimized 16-bit
-// quantization, whose coarser rounding needs the larger default α.
-struct MsmKeys {
-  bool hausdorff{};   // variant=hausdorff (support [0, 1]) instead of hamburger (support ℝ)
-  bool quantize16{};  // store 4 × 16 bits instead of 4 × fp32
-  double alpha{};     // moment bias toward (½, ½, ½, ½)
-};
-
-// Keys of percentage-closer soft shadows (pcss; techniques/filters/pcss/pcss.cpp): a blocker search, the
-// penumbra width from the mean blocker distance, then rotated Poisson PCF over that width.
-struct PcssKeys {
-  double light_size{};   // light radius, m; < 0: the scene light's radius
-  int search{};          // blocker-search taps (rotated Poisson disk)
-  int taps{};            // PCF taps (rotated Poisson disk)
-  double search_near{};  // nearest blocker searched for, × the receiver's distance
-  bool model{};          // the penumbra from techniques/filters/pcss/penumbra_model.h, not the mean blocker
-};
 
 struct MapParams {
   FaceLayoutKind layout = FaceLayoutKind::Cube;
@@ -99,11 +71,12 @@ struct MapParams {
   int tess{};             // dual-paraboloid layout: split triangles whose image has an edge
                           // longer than tess texels before projection (0 = off)
   int blur{};             // moment maps: separable box filter width, texels (odd; 1 = none)
-  VsmKeys vsm;
-  EsmKeys esm;
-  EvsmKeys evsm;
-  MsmKeys msm;
-  PcssKeys pcss;
+  // Each filter's own keys (vsm, esm, evsm, msm, pcss, …): the member its header names.
+#define SHADOWLAB_FILTER(id, ops)
+#define SHADOWLAB_FILTER_KEYS(type, member) type member;
+#include "techniques/filters/all.h"
+#undef SHADOWLAB_FILTER
+#undef SHADOWLAB_FILTER_KEYS
 };
 
 using MapKey = KeyDecl<MapParams>;
