@@ -17,4 +17,3 @@
 #include "techniques/filters/evsm/evsm.h"
 #include "techniques/filters/msm/msm.h"
 #include "techniques/filters/pcss/pcss.h"
-#include "techniques/filters/hsm/hsm.h"
