@@ -1,9 +1,10 @@
 #pragma once
-// The SIMD paths of the GBuffer resolve for 8 neighbouring pixels of one row: all showing the same
-// triangle (two thirds of the 8-pixel runs on room100k at 1024×768), or each its own. It performs the scalar
-// resolve's IEEE operations in the same order (gbuffer_pass.cpp is its oracle), so the GBuffer
-// is bit-identical either way; a test compares both. The resolve writes position, geometric
-// normal and depth; the shading normal and uv are deferred (core/gbuffer_shading.h).
+// The SIMD paths of the GBuffer resolve for 8 (AVX2) or 16 (AVX-512) neighbouring pixels of one
+// row: all showing the same triangle (two thirds of the 8-pixel runs on room100k at 1024×768),
+// or each its own. They perform the scalar resolve's IEEE operations in the same order
+// (gbuffer_pass.cpp is their oracle), so the GBuffer is bit-identical either way; a test
+// compares both. The resolve writes position, geometric normal and depth; the shading normal
+// and uv are deferred (core/gbuffer_shading.h).
 #include <cstdint>
 
 #include "core/isa.h"
