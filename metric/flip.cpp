@@ -7,15 +7,11 @@
 #include <string>
 #include <vector>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include "core/isa.h"
 #include "core/error.h"
 #include "core/exp_log.h"
 #include "core/parallel.h"
-#include "core/simd_target.h"
+#include "metric/flip_kernels.h"
 
 namespace shadowlab {
 namespace {
@@ -47,49 +43,12 @@ double power(double x, double p) {
   return x < 0x1p-1000 ? 0.0 : exp_d(p * log_d(x));
 }
 
-// power() of n values at once: out[i] = power(x[i], p ? p[i] : p0), 8 lanes (exp_d8, log_d8)
-// or 4 (exp_d4, log_d4) per step where the CPU has them, the tail and the rest by power(): the
-// same bits either way (core/exp_log.h gives the scalar bits in every lane; the selects are
-// power()'s).
-
-#if defined(__x86_64__)
-SL_TARGET("avx512f,avx512dq") size_t power8(const double* x, const double* p,
-                                            double p0, size_t n, double* out) {
-  size_t i = 0;
-  const __m512d tiny = _mm512_set1_pd(0x1p-1000), zero = _mm512_setzero_pd(),
-                one = _mm512_set1_pd(1.0);
-  for (; i + 8 <= n; i += 8) {
-    const __m512d v = _mm512_loadu_pd(x + i), e = p ? _mm512_loadu_pd(p + i) : _mm512_set1_pd(p0);
-    const __m512d y = exp_d8(_mm512_mul_pd(e, log_d8(_mm512_maskz_max_pd(0xFF, v, tiny))));
-    __m512d r = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(v, tiny, _CMP_LT_OQ), y, zero);
-    r = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(e, zero, _CMP_EQ_OQ), r, one);
-    _mm512_storeu_pd(out + i, r);
-  }
-  return i;
-}
-
-SL_TARGET("avx2") size_t power4(const double* x, const double* p, double p0, size_t n,
-                                double* out) {
-  size_t i = 0;
-  const __m256d tiny = _mm256_set1_pd(0x1p-1000), zero = _mm256_setzero_pd(),
-                one = _mm256_set1_pd(1.0);
-  for (; i + 4 <= n; i += 4) {
-    const __m256d v = _mm256_loadu_pd(x + i), e = p ? _mm256_loadu_pd(p + i) : _mm256_set1_pd(p0);
-    const __m256d y = exp_d4(_mm256_mul_pd(e, log_d4(_mm256_max_pd(v, tiny))));
-    __m256d r = _mm256_blendv_pd(y, zero, _mm256_cmp_pd(v, tiny, _CMP_LT_OQ));
-    r = _mm256_blendv_pd(r, one, _mm256_cmp_pd(e, zero, _CMP_EQ_OQ));
-    _mm256_storeu_pd(out + i, r);
-  }
-  return i;
-}
-#endif
-
-void power_n(Isa lanes, const double* x, const double* p, double p0, size_t n, double* out) {
-  size_t i = 0;
-#if defined(__x86_64__)
-  if (lanes == Isa::avx512) i = power8(x, p, p0, n, out);
-  if (lanes == Isa::avx2) i = power4(x, p, p0, n, out);
-#endif
+// power() of n values at once: out[i] = power(x[i], p ? p[i] : p0), the table's vector power
+// first (core/exp_log_avx2.h and exp_log_avx512.h give exp_d's and log_d's bits in every lane;
+// its selects are power()'s), the tail and the rest by power(): the same bits either way.
+void power_n(const FlipKernels& kern, const double* x, const double* p, double p0, size_t n,
+             double* out) {
+  size_t i = kern.power ? kern.power(x, p, p0, n, out) : 0;
   for (; i < n; ++i) out[i] = power(x[i], p ? p[i] : p0);
 }
 
@@ -221,46 +180,6 @@ Term feature_kernel_x(double ppd, bool point) {
   return {1.0, u, g};
 }
 
-// dst[x] += k·src[x] for x < n (a kernel's second term onto its first), compiled for AVX-512,
-// AVX2 and baseline x86-64 (element-wise IEEE multiply and add, no FMA under
-// -ffp-contract=off: the same bits in every clone). clang 14 (the sanitizer and fuzz builds)
-// has no target_clones here: baseline.
-#if defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-void axpy(double k, const double* src, int n, double* dst) {
-  for (int x = 0; x < n; ++x) dst[x] += k * src[x];
-}
-
-// out[x] = Σ_j k[j]·rows[j][x] for x < n, each sum from 0 in j order, 16 columns at a time in
-// registers: one load per tap and one store per column.
-#if defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-void weighted_rows(const double* const* rows, const double* k, int taps, int n, double* out) {
-  // GCC's vector extension, so that the vectorization runs across the 16 columns (left to
-  // itself the compiler vectorized across the taps, with gathers: about 2× slower).
-  typedef double v4d __attribute__((vector_size(32)));
-  int x = 0;
-  for (; x + 16 <= n; x += 16) {
-    v4d acc[4] = {};
-    for (int j = 0; j < taps; ++j) {
-      const v4d kj = {k[j], k[j], k[j], k[j]};
-      for (int q = 0; q < 4; ++q) {
-        v4d v;
-        std::memcpy(&v, rows[j] + x + 4 * q, sizeof v);
-        acc[q] += kj * v;
-      }
-    }
-    std::memcpy(out + x, acc, sizeof acc);
-  }
-  for (; x < n; ++x) {
-    double a = 0.0;
-    for (int j = 0; j < taps; ++j) a += k[j] * rows[j][x];
-    out[x] = a;
-  }
-}
-
 // A w × h plane of doubles, uninitialized (every value is written before it is read): the
 // passes below write whole planes, and zeroing each first was a tenth of FLIP's time.
 using Plane = std::unique_ptr<double[]>;
@@ -269,6 +188,7 @@ Plane plane(size_t n) { return Plane(new double[n]); }
 // The row pass of one separable term, clamp-to-edge: tmp[y][x] = Σ_i kx[i]·in[y][x + i − r].
 void row_pass(const double* in, int w, int h, const std::vector<double>& kx, double* tmp) {
   const int r = int(kx.size() / 2);
+  const FlipKernels& kern = flip_kernels(process_isa());
   parallel_for_chunks(size_t(h), 16, [&](size_t y0, size_t y1) {
     std::vector<const double*> shifted(kx.size());
     for (size_t y = y0; y < y1; ++y) {
@@ -283,7 +203,7 @@ void row_pass(const double* in, int w, int h, const std::vector<double>& kx, dou
       };
       for (int x = 0; x < lo; ++x) clamped(x);
       for (int i = -r; i <= r; ++i) shifted[size_t(i + r)] = row + lo + i;
-      weighted_rows(shifted.data(), kx.data(), 2 * r + 1, hi - lo, o + lo);
+      kern.weighted_rows(shifted.data(), kx.data(), 2 * r + 1, hi - lo, o + lo);
       for (int x = hi; x < w; ++x) clamped(x);
     }
   });
@@ -294,18 +214,19 @@ void row_pass(const double* in, int w, int h, const std::vector<double>& kx, dou
 void column_pass(const double* tmp, int w, int h, const std::vector<double>& ky, double c,
                  bool first, double* out) {
   const int r = int(ky.size() / 2);
+  const FlipKernels& kern = flip_kernels(process_isa());
   parallel_for_chunks(size_t(h), 16, [&](size_t y0, size_t y1) {
     std::vector<double> acc(static_cast<size_t>(w));
     std::vector<const double*> rows(ky.size());
     for (size_t y = y0; y < y1; ++y) {
       for (int j = -r; j <= r; ++j)
         rows[size_t(j + r)] = tmp + size_t(std::clamp(int(y) + j, 0, h - 1)) * size_t(w);
-      weighted_rows(rows.data(), ky.data(), 2 * r + 1, w, acc.data());
+      kern.weighted_rows(rows.data(), ky.data(), 2 * r + 1, w, acc.data());
       double* o = out + y * size_t(w);
       if (first)
         for (int x = 0; x < w; ++x) o[x] = 0.0 + c * acc[size_t(x)];
       else
-        axpy(c, acc.data(), w, o);
+        kern.axpy(c, acc.data(), w, o);
     }
   });
 }
@@ -368,7 +289,8 @@ void for_runs(size_t n, int w, const F& f) {
 
 // Hunt-adjusted CIELAB of pixels [b, e) of three linear RGB planes (clamped to [0, 1]): the
 // cube roots as one power_n call per channel; hunt_lab_from_linear's operations otherwise.
-void hunt_lab_run(Isa lanes, const Plane* rgb, size_t b, size_t e, std::vector<double>* lab) {
+void hunt_lab_run(const FlipKernels& kern, const Plane* rgb, size_t b, size_t e,
+                  std::vector<double>* lab) {
   const size_t k = e - b;
   std::vector<double> t[3], f[3];
   for (int c = 0; c < 3; ++c) {
@@ -383,7 +305,7 @@ void hunt_lab_run(Isa lanes, const Plane* rgb, size_t b, size_t e, std::vector<d
     t[1][i] = xyz.y * kInvWhite[1];
     t[2][i] = xyz.z * kInvWhite[2];
   }
-  for (int c = 0; c < 3; ++c) power_n(lanes, t[c].data(), nullptr, 1.0 / 3.0, k, f[c].data());
+  for (int c = 0; c < 3; ++c) power_n(kern, t[c].data(), nullptr, 1.0 / 3.0, k, f[c].data());
   const double delta = 6.0 / 29.0;
   for (int c = 0; c < 3; ++c)
     for (size_t i = 0; i < k; ++i)
@@ -399,11 +321,12 @@ void hunt_lab_run(Isa lanes, const Plane* rgb, size_t b, size_t e, std::vector<d
 
 // CIELAB of a grey image's pixels [b, e) from its filtered Y' plane: L from the cube root of
 // the clamped luminance, a = b = 0.
-void grey_lab_run(Isa lanes, const double* ycc_y, size_t b, size_t e, std::vector<double>* lab) {
+void grey_lab_run(const FlipKernels& kern, const double* ycc_y, size_t b, size_t e,
+                  std::vector<double>* lab) {
   const size_t k = e - b;
   std::vector<double> t(k), f(k);
   for (size_t i = 0; i < k; ++i) t[i] = std::clamp((ycc_y[b + i] + 16.0) / 116.0, 0.0, 1.0);
-  power_n(lanes, t.data(), nullptr, 1.0 / 3.0, k, f.data());
+  power_n(kern, t.data(), nullptr, 1.0 / 3.0, k, f.data());
   const double delta = 6.0 / 29.0;
   for (size_t i = 0; i < k; ++i) {
     const double fy =
@@ -448,12 +371,12 @@ FlipPrepared flip_prepare(const ImageF& img, double ppd) {
   for (int c = 0; c < planes; ++c)
     correlate(ycc[c].get(), w, h, csf_kernel(kCsf[c], ppd), filtered[c].get());
   for (auto& l : p.lab) l.resize(n);
-  const Isa lanes = process_isa();
+  const FlipKernels& kern = flip_kernels(process_isa());
   if (grey) {
     // A grey stays grey: its filtered luminance Y = (Y' + 16)/116, clamped to [0, 1] as the
     // RGB box clamps it, has L* = 116·f(Y) − 16 and a* = b* = 0.
     for_runs(n, w,
-             [&](size_t b, size_t e) { grey_lab_run(lanes, filtered[0].get(), b, e, p.lab); });
+             [&](size_t b, size_t e) { grey_lab_run(kern, filtered[0].get(), b, e, p.lab); });
   } else {
     // Back to linear RGB, then Lab.
     Plane rgb[3];
@@ -464,7 +387,7 @@ FlipPrepared flip_prepare(const ImageF& img, double ppd) {
       rgb[1][i] = v.y;
       rgb[2][i] = v.z;
     });
-    for_runs(n, w, [&](size_t b, size_t e) { hunt_lab_run(lanes, rgb, b, e, p.lab); });
+    for_runs(n, w, [&](size_t b, size_t e) { hunt_lab_run(kern, rgb, b, e, p.lab); });
   }
   // Features on the normalized luminance of the unfiltered image.
   // Each detector across x is u(x)·g(y), across y g(x)·u(y), with the same normalized g for
@@ -497,21 +420,21 @@ ImageF flip_error_map(const FlipPrepared& t, const FlipPrepared& r) {
   const double c_max = cmax();
   ImageF out(t.width, t.height, 1);
   const size_t n = out.pixel_count();
-  const Isa lanes = process_isa();
+  const FlipKernels& kern = flip_kernels(process_isa());
   for_runs(n, t.width, [&](size_t b, size_t e) {
     const size_t k = e - b;
     std::vector<double> de(k), dc(k), ex(k), v(k);
     for (size_t i = 0; i < k; ++i)
       de[i] = hyab({r.lab[0][b + i], r.lab[1][b + i], r.lab[2][b + i]},
                    {t.lab[0][b + i], t.lab[1][b + i], t.lab[2][b + i]});
-    power_n(lanes, de.data(), nullptr, kQc, k, dc.data());
+    power_n(kern, de.data(), nullptr, kQc, k, dc.data());
     for (size_t i = 0; i < k; ++i) {
       dc[i] = redistribute(dc[i], c_max);
       const double df_raw = std::max(std::fabs(r.edge[b + i] - t.edge[b + i]),
                                      std::fabs(r.point[b + i] - t.point[b + i]));
       ex[i] = 1.0 - std::sqrt(df_raw / std::sqrt(2.0));  // 1 − ΔEf, the power qf = 0.5
     }
-    power_n(lanes, dc.data(), ex.data(), 0.0, k, v.data());
+    power_n(kern, dc.data(), ex.data(), 0.0, k, v.data());
     for (size_t i = 0; i < k; ++i) out.data[b + i] = float(v[i]);
   });
   return out;

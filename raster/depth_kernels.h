@@ -3,16 +3,19 @@
 // folded into the edge values) and a depth test against the float plane
 //   1/w(i, r) = clamp((z0 + z_dy · float(oy + r)) + z_dx · float(ox + i), z_lo, z_hi),
 // computed with the same IEEE operations (multiply, then add; no FMA) in every variant, so the
-// AVX-512 and AVX2 paths and the scalar oracle give identical bits. The variant is chosen once
-// at run time (depth_kernel_name).
+// AVX-512 and AVX2 paths and the scalar oracle give identical bits. The variant is
+// process_isa()'s table of DepthKernels, taken once per process (depth_row8,
+// rasterize_depth_in_rect).
 #include <cstddef>
 #include <cstdint>
 
+#include "core/isa.h"
+
 namespace shadowlab {
 
-// Name of the depth kernels in use, chosen once per process: "avx512" (whole triangles,
-// depth_triangle_selected), "avx2" (rows of blocks) or "scalar" (the oracle); SHADOWLAB_ISA=avx2
-// keeps AVX2, SHADOWLAB_SCALAR=1 the scalar oracle.
+// Name of the depth kernels in use (process_isa()'s table): "avx512" (whole triangles),
+// "avx2" (rows of blocks) or "scalar" (the oracle); SHADOWLAB_ISA=avx2 keeps AVX2,
+// SHADOWLAB_SCALAR=1 the scalar oracle.
 const char* depth_kernel_name();
 
 // A row of `blocks` blocks side by side, each `rows` rows × 8 pixels, in one call (the walk over
@@ -36,16 +39,6 @@ using DepthRow8Fn = void (*)(const DepthRow8& r, float* z, size_t stride);
 
 // Scalar reference: every pixel of every block tested on its own (no block-level test).
 void depth_row8_scalar(const DepthRow8& r, float* z, size_t stride);
-// The AVX2 row, or nullptr when the CPU lacks AVX2.
-DepthRow8Fn depth_row8_avx2();
-// The scalar oracle when it is the kernel in use, else the AVX2 row (the AVX-512 path walks
-// whole triangles instead: depth_triangle_selected).
-DepthRow8Fn depth_row8_selected();
-
-inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
-  static const DepthRow8Fn fn = depth_row8_selected();
-  fn(r, z, stride);
-}
 
 // A whole triangle inside the rectangle [x0, x1) × [y0, y1) of a width-wide target (z, and
 // ids when not null): rasterize_depth_in_rect's walk and depth_row8's blocks in one AVX-512
@@ -55,8 +48,22 @@ inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
 struct TriangleSetup;
 using DepthTriangleFn = void (*)(const TriangleSetup& s, int x0, int y0, int x1, int y1,
                                  float* z, uint32_t* ids, size_t width);
-DepthTriangleFn depth_triangle_avx512();
-// The AVX-512 form when the AVX-512 kernels are in use (depth_kernel_name), else nullptr.
-DepthTriangleFn depth_triangle_selected();
+
+// The family's table per instruction set (docs/simd.md). row8: the scalar oracle, or the AVX2
+// row (raster/depth_kernels_avx2.cpp), which the AVX-512 table uses too; triangle: the AVX-512
+// walk (depth_kernels_avx512.cpp), nullptr in the narrower tables (their callers walk the
+// blocks themselves, rasterize_depth_in_rect, calling row8).
+struct DepthKernels {
+  Isa isa;  // the widest instruction set the table's kernels were compiled for
+  DepthRow8Fn row8;
+  DepthTriangleFn triangle;
+};
+const DepthKernels& depth_kernels(Isa isa);
+
+// process_isa()'s row, taken at the first call.
+inline void depth_row8(const DepthRow8& r, float* z, size_t stride) {
+  static const DepthRow8Fn fn = depth_kernels(process_isa()).row8;
+  fn(r, z, stride);
+}
 
 }  // namespace shadowlab

@@ -7,6 +7,7 @@
 #include "core/block_bounds.h"
 #include "core/parallel.h"
 #include "raster/alpha_test.h"
+#include "core/isa.h"
 #include "raster/gbuffer_resolve_simd.h"
 #include "raster/pipeline.h"
 
@@ -75,9 +76,11 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
   // people read them, and writing them cost a fifth of this pass (core/gbuffer_shading.h).
   const std::vector<uint32_t> first = scene_first_triangles(scene);
   const PixelRays rays(cam);
-  const ResolveRun8Fn simd = allow_simd ? resolve_run8_simd() : nullptr;
-  const ResolveLanes8Fn lanes8 = allow_simd ? resolve_lanes8_simd() : nullptr;
-  const ResolveLanes16Fn lanes16 = allow_simd ? resolve_lanes16_simd() : nullptr;
+  const GBufferResolveKernels& kernels =
+      gbuffer_resolve_kernels(allow_simd ? process_isa() : Isa::scalar);
+  const ResolveRun8Fn simd = kernels.run8;
+  const ResolveLanes8Fn lanes8 = kernels.lanes8;
+  const ResolveLanes16Fn lanes16 = kernels.lanes16;
   // Every column's part of the ray direction, for the AVX2 paths (ResolveRun8::columns).
   std::vector<float> columns(3 * size_t(w));
   for (int x = 0; x < w; ++x) {
@@ -156,7 +159,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
           // triangle filled at once), the same bits as the code below; then the empty lanes.
           const uint32_t* ids = &vis.ids[i];
           uint32_t covered = 0;
-          uint32_t starts = resolve_lanes16_runs(ids, &covered);
+          uint32_t starts = kernels.lanes16_runs(ids, &covered);
           if (covered == 0) {
             for (int k = 0; k < 16; ++k) empty_pixel(i + size_t(k));
             x += 15;
@@ -172,7 +175,7 @@ void render_gbuffer(const Scene& scene, GBuffer& g, RasterStats* stats, bool all
               load_triangle(tk);
               triangle_terms();
               const uint32_t run_mask = ((1u << k1) - 1u) & ~((1u << k) - 1u);
-              resolve_lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.gn, tri.e2q, tri.m,
+              kernels.lanes16_fill(lanes_w, run_mask, tri.e1, tri.e2, tri.gn, tri.e2q, tri.m,
                                    tri.p);
             }
           }

@@ -1,11 +1,13 @@
 #pragma once
-// AVX2 paths of the GBuffer resolve for 8 neighbouring pixels of one row: all showing the same
-// triangle (two thirds of the 8-pixel runs on room100k at 1024×768), or each its own. It performs the scalar
-// resolve's IEEE operations in the same order (gbuffer_pass.cpp is its oracle), so the GBuffer
-// is bit-identical either way; a test compares both. The resolve writes position, geometric
-// normal and depth; the shading normal and uv are deferred (core/gbuffer_shading.h).
+// The SIMD paths of the GBuffer resolve for 8 (AVX2) or 16 (AVX-512) neighbouring pixels of one
+// row: all showing the same triangle (two thirds of the 8-pixel runs on room100k at 1024×768),
+// or each its own. They perform the scalar resolve's IEEE operations in the same order
+// (gbuffer_pass.cpp is their oracle), so the GBuffer is bit-identical either way; a test
+// compares both. The resolve writes position, geometric normal and depth; the shading normal
+// and uv are deferred (core/gbuffer_shading.h).
 #include <cstdint>
 
+#include "core/isa.h"
 #include "core/math.h"
 
 namespace shadowlab {
@@ -30,9 +32,6 @@ struct ResolveRun8 {
 using ResolveRun8Fn = void (*)(const ResolveRun8& r, int x, int y, const float* inv_w,
                                vec3* position, vec3* geo_normal, float* depth);
 
-// The AVX2 path, or nullptr when the CPU lacks AVX2 or SHADOWLAB_SCALAR=1.
-ResolveRun8Fn resolve_run8_simd();
-
 // 8 neighbouring pixels of one row that show different triangles: each lane its own
 // triangle's vertices (structure of arrays: [vertex][component][lane]), from which the kernel
 // derives ResolveRun8's terms with the scalar resolve's operations, 8 triangles at a time (a
@@ -45,7 +44,6 @@ struct ResolveLanes8 {
 using ResolveLanes8Fn = void (*)(const ResolveRun8& camera, const ResolveLanes8& lanes, int x,
                                  int y, const float* inv_w, vec3* position, vec3* geo_normal,
                                  float* depth);
-ResolveLanes8Fn resolve_lanes8_simd();
 
 // 16 neighbouring pixels in AVX-512, each lane its own triangle as in ResolveLanes8 (runs of
 // one triangle are filled with one masked store per term).
@@ -60,15 +58,26 @@ using ResolveLanes16Fn = void (*)(const ResolveRun8& camera, const ResolveLanes1
                                   int y, const float* inv_w, vec3* position, vec3* geo_normal,
                                   float* depth, uint32_t* mesh_id, uint32_t* prim_id,
                                   uint8_t* covered);
-// The AVX-512 path (F, DQ), or nullptr when the CPU lacks it or a narrower path is forced.
-ResolveLanes16Fn resolve_lanes16_simd();
 // The first pixels of the runs of equal ids among ids[0 .. 15] (bit k: ids[k] != ids[k − 1];
 // bit 0 always set), and in *covered the pixels that show a triangle (ids[k] != kNoPrimitive).
-// Only with the path above.
-uint32_t resolve_lanes16_runs(const uint32_t* ids, uint32_t* covered);
-// Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term. Only
-// with the path above.
-void resolve_lanes16_fill(ResolveLanes16& l, uint32_t mask, const vec3& e1, const vec3& e2,
-                          const vec3& gn, float e2q, uint32_t mesh, uint32_t prim);
+using ResolveLanes16RunsFn = uint32_t (*)(const uint32_t* ids, uint32_t* covered);
+// Lanes `mask` of `l` get one triangle's terms: one masked store of each broadcast term.
+using ResolveLanes16FillFn = void (*)(ResolveLanes16& l, uint32_t mask, const vec3& e1,
+                                      const vec3& e2, const vec3& gn, float e2q, uint32_t mesh,
+                                      uint32_t prim);
+
+// The family's table per instruction set (docs/simd.md). The scalar table has no kernels
+// (nullptr: the resolve's own loop in gbuffer_pass.cpp, the oracle); the AVX2 table has the
+// 8-pixel paths (raster/gbuffer_resolve_simd_avx2.cpp); the AVX-512 table those and the 16-pixel
+// path with its two helpers (gbuffer_resolve_simd_avx512.cpp).
+struct GBufferResolveKernels {
+  Isa isa;  // the widest instruction set the table's kernels were compiled for
+  ResolveRun8Fn run8;
+  ResolveLanes8Fn lanes8;
+  ResolveLanes16Fn lanes16;
+  ResolveLanes16RunsFn lanes16_runs;
+  ResolveLanes16FillFn lanes16_fill;
+};
+const GBufferResolveKernels& gbuffer_resolve_kernels(Isa isa);
 
 }  // namespace shadowlab

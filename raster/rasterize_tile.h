@@ -77,7 +77,7 @@ inline void rasterize_depth_in_rect(const TriangleSetup& s, int x0, int y0, int 
   const int min_x = std::max(s.min_x, x0), max_x = std::min(s.max_x, x1 - 1);
   const int min_y = std::max(s.min_y, y0), max_y = std::min(s.max_y, y1 - 1);
   if (min_x > max_x || min_y > max_y) return;
-  static const DepthTriangleFn whole = depth_triangle_selected();
+  static const DepthTriangleFn whole = depth_kernels(process_isa()).triangle;
   if (whole) {
     whole(s, x0, y0, x1, y1, z, ids, width);
     return;

@@ -8,6 +8,7 @@
 // Inside triangles through it in submission order; clipped ones keep the scalar setup.
 #include <cstdint>
 
+#include "core/isa.h"
 #include "raster/setup.h"
 
 namespace shadowlab {
@@ -25,14 +26,15 @@ struct SetupBatch8 {
 using SetupBatch8Fn = int (*)(const SetupBatch8& b, int width, int height, CullMode cull,
                               TriangleSetup* out, RasterStats& stats);
 
-// The widest form in use: AVX-512 (F, DQ) unless the CPU lacks it or SHADOWLAB_ISA=avx2 keeps
-// the narrower paths, else AVX2 (double lanes, see setup_simd.cpp), or nullptr when the CPU
-// lacks AVX2 or SHADOWLAB_SCALAR=1 forces the oracles.
-SetupBatch8Fn setup_batch8_simd();
-
-// The AVX2 form whenever the CPU runs it, whatever is forced: for the tests, so that an
-// AVX-512 machine checks it too.
-SetupBatch8Fn setup_batch8_avx2_form();
+// The family's table per instruction set (docs/simd.md): the AVX2 form (double lanes, see
+// raster/setup_simd_avx2.cpp) and the AVX-512 form (int64 and double lanes,
+// setup_simd_avx512.cpp). The scalar table has none (nullptr): the front end then sets up each
+// triangle itself; setup_batch8_scalar below is the oracle the tests compare the forms with.
+struct SetupKernels {
+  Isa isa;  // the instruction set the batch form was compiled for
+  SetupBatch8Fn batch8;
+};
+const SetupKernels& setup_kernels(Isa isa);
 
 // The same through setup_triangle, lane by lane: the oracle.
 int setup_batch8_scalar(const SetupBatch8& b, int width, int height, CullMode cull,

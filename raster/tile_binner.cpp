@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "raster/clip.h"
+#include "core/isa.h"
 #include "raster/setup_simd.h"
 #include "raster/vertex_transform.h"
 
@@ -89,7 +90,7 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
     if (!mesh_culled[m])
       for (size_t b = 0; b < meshes[m].vertex_count; b += kVertexGrain)
         pieces.push_back({m, b, std::min(meshes[m].vertex_count, b + kVertexGrain)});
-  const TransformVerticesFn transform = transform_vertices_selected();
+  const TransformVerticesFn transform = vertex_transform_kernels(process_isa()).transform;
   parallel_for(0, pieces.size(), [&](size_t k) {
     const Piece& pc = pieces[k];
     const vec3* pos = meshes[pc.mesh].positions;
@@ -110,7 +111,7 @@ BinnedFrame bin_triangles(const std::vector<MeshView>& meshes, const mat4& view_
   const size_t chunk_count = (total + kChunkTriangles - 1) / kChunkTriangles;
   frame.chunks.resize(chunk_count);
   std::vector<RasterStats> chunk_stats(chunk_count);
-  const SetupBatch8Fn setup8 = setup_batch8_simd();
+  const SetupBatch8Fn setup8 = setup_kernels(process_isa()).batch8;
   parallel_for(0, chunk_count, [&](size_t ci) {
     BinnedChunk& chunk = frame.chunks[ci];
     RasterStats& st = chunk_stats[ci];

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/isa.h"
 #include "core/math.h"
 
 namespace shadowlab {
@@ -15,14 +16,17 @@ namespace shadowlab {
 using TransformVerticesFn = void (*)(const mat4& m, const vec3* pos, size_t n, float guard_x,
                                      float guard_y, vec4* clip, uint32_t* code);
 
-// The scalar form: the oracle, and the path without AVX2.
+// The scalar form: the oracle, and the vector forms' tail.
 void transform_vertices_scalar(const mat4& m, const vec3* pos, size_t n, float guard_x,
                                float guard_y, vec4* clip, uint32_t* code);
 
-// The AVX2 form where process_isa() >= Isa::avx2 holds, else the scalar one.
-TransformVerticesFn transform_vertices_selected();
-
-// The AVX2 form whenever the CPU runs it (nullptr otherwise), whatever is forced: for the tests.
-TransformVerticesFn transform_vertices_avx2_form();
+// The family's table per instruction set (docs/simd.md): the scalar form, or the AVX2 form
+// (raster/vertex_transform_avx2.cpp), which AVX-512 uses too (the gathers and the 4 × 8
+// transpose bound it, not the width).
+struct VertexTransformKernels {
+  Isa isa;  // the instruction set the transform was compiled for
+  TransformVerticesFn transform;
+};
+const VertexTransformKernels& vertex_transform_kernels(Isa isa);
 
 }  // namespace shadowlab

@@ -1,8 +1,10 @@
 // GBuffer block bounds (core/block_bounds.h): the AVX2 path for fully covered segments and the
-// pixel-by-pixel path both give the brute-force bounds; NaN and infinite positions.
+// pixel-by-pixel path both give the brute-force bounds; NaN and infinite positions; every table
+// of BlockBoundsKernels gives the scalar table's bytes.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -90,6 +92,31 @@ TEST(BlockBounds, NonFinitePositions) {
     EXPECT_EQ(b01.hi.x, inf);
     EXPECT_LT(b01.lo.x, 0.0f);
     EXPECT_TRUE(std::isfinite(b01.hi.y));
+  }
+}
+
+// Every table this CPU runs, through the camera pass's BlockRowBounds, against the scalar table
+// byte for byte (bounds, NaN blocks and all) on the random GBuffers with a NaN in a fully
+// covered segment.
+TEST(BlockBounds, EveryTableGivesTheScalarBytes) {
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    GBuffer want = random_gbuffer(seed);
+    want.position[size_t(2 * 100 + 5)].x = std::numeric_limits<float>::quiet_NaN();  // block 0
+    GBuffer got = want;
+    {
+      const ScopedIsa scalar(Isa::scalar);
+      compute_block_bounds(want);
+    }
+    for (const Isa isa : cpu_isas()) {
+      const ScopedIsa scoped(isa);
+      got.block_bounds.clear();
+      compute_block_bounds(got);
+      ASSERT_EQ(got.block_bounds.size(), want.block_bounds.size());
+      EXPECT_EQ(std::memcmp(got.block_bounds.data(), want.block_bounds.data(),
+                            want.block_bounds.size() * sizeof(BlockBounds)),
+                0)
+          << isa_name(isa) << " seed " << seed;
+    }
   }
 }
 

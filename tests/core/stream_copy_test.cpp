@@ -32,16 +32,19 @@ void expect_exact_copy(StreamCopy copy) {
     }
 }
 
-TEST(StreamCopy, ScalarCopiesExactly) { expect_exact_copy(stream_copy_scalar); }
-
-TEST(StreamCopy, Avx2CopiesExactly) {
-  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2";
-  expect_exact_copy(stream_copy_avx2);
+TEST(StreamCopy, EveryTableCopiesExactly) {
+  for (const Isa isa : cpu_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    ASSERT_EQ(stream_copy_kernels(isa).isa, isa);
+    expect_exact_copy(stream_copy_kernels(isa).copy);
+  }
 }
 
-TEST(StreamCopy, Avx512CopiesExactly) {
-  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512";
-  expect_exact_copy(stream_copy_avx512);
+TEST(StreamCopy, TheProcessCopyIsTheProcessTable) {
+  for (const Isa isa : cpu_isas()) {
+    ScopedIsa scoped(isa);
+    EXPECT_EQ(stream_copy_kernel(), stream_copy_kernels(isa).copy) << isa_name(isa);
+  }
 }
 
 }  // namespace

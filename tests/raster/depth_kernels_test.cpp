@@ -89,10 +89,13 @@ void expect_row_matches_brute_force(DepthRow8Fn fn) {
 
 TEST(DepthKernels, ScalarRowMatchesBruteForce) { expect_row_matches_brute_force(depth_row8_scalar); }
 
-TEST(DepthKernels, Avx2RowMatchesBruteForce) {
-  const DepthRow8Fn fast = depth_row8_avx2();
-  if (!fast) GTEST_SKIP() << "no AVX2 on this CPU";
-  expect_row_matches_brute_force(fast);
+// Every table's row this CPU runs (the AVX-512 table's is the AVX2 row).
+TEST(DepthKernels, EveryTablesRowMatchesBruteForce) {
+  for (const Isa isa : cpu_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    ASSERT_EQ(depth_kernels(isa).isa, isa);
+    expect_row_matches_brute_force(depth_kernels(isa).row8);
+  }
 }
 
 }  // namespace

@@ -108,8 +108,11 @@ TEST(DepthTriangle, DepthOnlyPathInUseMatchesTheGeneralPath) {
 }
 
 TEST(DepthTriangle, Avx512WalkMatchesTheGeneralPath) {
-  const DepthTriangleFn walk = depth_triangle_avx512();
-  if (!walk) GTEST_SKIP() << "no AVX-512 on this CPU";
+  EXPECT_EQ(depth_kernels(Isa::scalar).triangle, nullptr);
+  EXPECT_EQ(depth_kernels(Isa::avx2).triangle, nullptr);
+  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
+  const DepthTriangleFn walk = depth_kernels(Isa::avx512).triangle;
+  ASSERT_NE(walk, nullptr);
   expect_walk_matches_general_path(
       [walk](const TriangleSetup& s, int x0, int y0, int x1, int y1, DepthTarget& t) {
         walk(s, x0, y0, x1, y1, t.inv_w.data(), t.with_ids ? t.ids.data() : nullptr,

@@ -1,4 +1,5 @@
-// The AVX2 GBuffer resolve against its scalar oracle: identical bytes in every layer.
+// Every vector table of the GBuffer resolve this CPU runs against its scalar oracle: identical
+// bytes in every layer.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -6,6 +7,7 @@
 #include "scenes/scene_library.h"
 #include "test_paths.h"
 #include "raster/gbuffer_pass.h"
+#include "core/isa.h"
 #include "raster/gbuffer_resolve_simd.h"
 
 namespace shadowlab {
@@ -17,7 +19,10 @@ bool same(const std::vector<T>& a, const std::vector<T>& b) {
 }
 
 TEST(GBufferResolveSimd, MatchesScalarResolveBitForBit) {
-  if (!resolve_run8_simd()) GTEST_SKIP() << "no AVX2 path on this CPU (or SHADOWLAB_SCALAR=1)";
+  std::vector<Isa> isas;
+  for (const Isa isa : cpu_isas())
+    if (isa != Isa::scalar) isas.push_back(isa);
+  if (isas.empty()) GTEST_SKIP() << "no vector set on this CPU";
   // foliage and bunny mix meshes in one row's 8 pixels (the mixed-triangle path).
   std::vector<std::string> names = {"default", "room100k", "plane", "foliage", "bunny"};
   // An OBJ with uvs and vertex normals.
@@ -45,17 +50,22 @@ TEST(GBufferResolveSimd, MatchesScalarResolveBitForBit) {
     }
     scene.camera.width = 509;  // not a multiple of 8: runs end early at the right edge
     scene.camera.height = 300;
-    GBuffer fast, slow;
-    render_gbuffer(scene, fast, nullptr, true);
+    GBuffer slow;
     render_gbuffer(scene, slow, nullptr, false);
-    EXPECT_TRUE(same(fast.position, slow.position)) << name;
-    EXPECT_TRUE(same(fast.geo_normal, slow.geo_normal)) << name;
-    // The shading attributes are deferred (core/gbuffer_shading.h) on both paths.
-    EXPECT_FALSE(fast.has_shading_attributes() || slow.has_shading_attributes()) << name;
-    EXPECT_TRUE(same(fast.depth, slow.depth)) << name;
-    EXPECT_TRUE(same(fast.mesh_id, slow.mesh_id)) << name;
-    EXPECT_TRUE(same(fast.prim_id, slow.prim_id)) << name;
-    EXPECT_TRUE(same(fast.covered, slow.covered)) << name;
+    for (const Isa isa : isas) {
+      const ScopedIsa scoped(isa);
+      GBuffer fast;
+      render_gbuffer(scene, fast, nullptr, true);
+      EXPECT_TRUE(same(fast.position, slow.position)) << name << " " << isa_name(isa);
+      EXPECT_TRUE(same(fast.geo_normal, slow.geo_normal)) << name << " " << isa_name(isa);
+      // The shading attributes are deferred (core/gbuffer_shading.h) on both paths.
+      EXPECT_FALSE(fast.has_shading_attributes() || slow.has_shading_attributes())
+          << name << " " << isa_name(isa);
+      EXPECT_TRUE(same(fast.depth, slow.depth)) << name << " " << isa_name(isa);
+      EXPECT_TRUE(same(fast.mesh_id, slow.mesh_id)) << name << " " << isa_name(isa);
+      EXPECT_TRUE(same(fast.prim_id, slow.prim_id)) << name << " " << isa_name(isa);
+      EXPECT_TRUE(same(fast.covered, slow.covered)) << name << " " << isa_name(isa);
+    }
   }
 }
 

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Fails when an object compiled for AVX2 or AVX-512 (*_avx2.cpp.o, *_avx512.cpp.o) holds a fused
+# multiply-add: the ISA files are compiled with -mfma, and only -ffp-contract=off keeps the
+# compiler from contracting a multiply and an add into one rounding, which would give other
+# bits than the scalar oracles (docs/simd.md). No kernel calls an FMA intrinsic, so any
+# vfmadd / vfmsub / vfnmadd / vfnmsub (every form: 132, 213, 231, ps, pd, ss, sd, addsub) is one.
+#
+# Usage: check_isa_objects.sh OBJECT...   (the objects of the build's libraries and tests; those
+# not named *_avx2.cpp.o or *_avx512.cpp.o are ignored). Exit 0: none found; 1: found (listed);
+# 77: objdump missing (ctest reports the test as skipped).
+set -uo pipefail
+if ! command -v objdump >/dev/null; then
+  echo "check_isa_objects.sh: objdump not found (binutils): skipped"
+  exit 77
+fi
+checked=0
+bad=0
+for obj in "$@"; do
+  case $obj in
+    *_avx2.cpp.o | *_avx512.cpp.o) ;;
+    *) continue ;;
+  esac
+  if [[ ! -f $obj ]]; then
+    echo "check_isa_objects.sh: $obj: not built"
+    bad=1
+    continue
+  fi
+  checked=$((checked + 1))
+  hits=$(objdump -d --no-show-raw-insn "$obj" | grep -E '\bv(fmadd|fmsub|fnmadd|fnmsub)[0-9a-z]*\b')
+  if [[ -n $hits ]]; then
+    echo "$obj: $(wc -l <<<"$hits") fused multiply-add instruction(s), e.g.:"
+    head -3 <<<"$hits"
+    bad=1
+  fi
+done
+if ((checked == 0)); then
+  echo "check_isa_objects.sh: no *_avx2.cpp.o or *_avx512.cpp.o among the objects given"
+  exit 1
+fi
+echo "$checked ISA objects checked"
+exit $bad
