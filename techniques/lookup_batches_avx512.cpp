@@ -9,7 +9,6 @@
 #include <cstdint>
 
 #include "techniques/lookup_batches.h"
-#include "techniques/map_lookup_simd.h"
 #include "techniques/moment_bound.h"
 
 namespace shadowlab {
