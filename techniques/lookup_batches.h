@@ -9,8 +9,9 @@
 //
 // The scalar table has no kernels (nullptr): its callers run their scalar lookup per pixel,
 // the oracle. The AVX-512 table is the AVX2 one except for MSM's reconstruction in 8 lanes (the
-// others are bound by their gathers). Tests: tests/techniques/lookup_batches_test.cpp,
-// moment_bound_test.cpp, lookup_simd_test.cpp.
+// others are bound by their gathers). Tests, for every table the CPU has:
+// LookupSimd.FilterBatchesMatchTheScalarOracle (tests/techniques/lookup_simd_test.cpp: whole
+// lookups against the scalar loops) and MomentBound.EveryTablesLanesGiveTheScalarBits.
 #include <cstdint>
 
 #include "core/isa.h"
