@@ -36,11 +36,12 @@ inline double min_diff(double prev, double here, double next) {
   return std::fabs(a) <= std::fabs(b) ? a : b;
 }
 
-// The instruction set of a filter's row kernels (techniques/moment_rows.h), chosen once per
-// filter: process_isa(); the oracles (fixed_kernels false) take the scalar table, so the tests'
+// A filter's row kernels (techniques/moment_rows.h), chosen once per filter: the table of
+// process_isa(); the oracles (fixed_kernels false) take the scalar table, so the tests'
 // comparisons of the two also compare the tables bit for bit.
-inline Isa exp_path(bool fast) { return fast ? process_isa() : Isa::scalar; }
-inline const MomentRowKernels& row_kernels(bool fast) { return moment_row_kernels(exp_path(fast)); }
+inline const MomentRowKernels& row_kernels(bool fast) {
+  return moment_row_kernels(fast ? process_isa() : Isa::scalar);
+}
 
 // Output columns [x0, x0 + n) of a row and the input columns their k-wide windows read:
 // [in0, in0 + in_n) of the image (clipped to it), placed at ext[lead ..] of the extended row,

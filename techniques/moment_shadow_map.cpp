@@ -95,7 +95,7 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
 
 // 8 lanes at once: msm_value's arithmetic in double. With AVX-512, the interleaved moments'
 // bilinear taps loaded by the AVX2 kernel, then the mix and the reconstruction in 8 lanes;
-// with AVX2, the mixed moments from bilinear8_mix4_avx2 (lane by lane, no tap transpose), then
+// with AVX2, the mixed moments from bilinear8_mix4 (lane by lane, no tap transpose), then
 // the reconstruction in halves of 4. Used only where the AVX2 kernels exist. The lookup
 // loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a serial chain
 // of divisions and a square root per batch (7 divisions then, 2 now), and with AVX-512 4
