@@ -14,18 +14,9 @@
 // log_wide8 / log_wide16, log_split_f8 / log_split_f16) are written once, in
 // core/exp_log_avx2.inl and core/exp_log_avx512.inl. An ISA file (*_avx2.cpp, *_avx512.cpp;
 // docs/simd.md) includes core/exp_log_avx2.h or core/exp_log_avx512.h, which put them in their
-// own namespaces as plain forced-inline functions; this header declares them in shadowlab with
-// target attributes for code that is not yet in an ISA file.
+// own namespaces as plain forced-inline functions.
 #include <bit>
 #include <cstdint>
-
-#include "core/simd_target.h"
-
-#if defined(__x86_64__)
-#include <immintrin.h>
-
-#include <initializer_list>
-#endif
 
 namespace shadowlab {
 
@@ -197,17 +188,5 @@ inline float log_split_f(float x, int32_t& e) {
   e = int32_t((bits >> 23) + up) - 127;
   return std::bit_cast<float>((bits & 0x007FFFFFu) | (0x3F800000u - (up << 23)));
 }
-
-#if defined(__x86_64__)
-// The same vector functions in this namespace, each with a target attribute, for callers that
-// are not yet ISA files (docs/simd.md); an ISA file includes core/exp_log_avx2.h or
-// core/exp_log_avx512.h and calls them in that header's namespace.
-#define SL_EXP_LOG_AVX2 SL_TARGET("avx2") inline
-#define SL_EXP_LOG_AVX512 SL_TARGET("avx512f") inline
-#include "core/exp_log_avx2.inl"
-#include "core/exp_log_avx512.inl"
-#undef SL_EXP_LOG_AVX2
-#undef SL_EXP_LOG_AVX512
-#endif
 
 }  // namespace shadowlab

@@ -2,9 +2,7 @@
 // core/exp_log.h's vector exp and log for AVX2 kernel files (*_avx2.cpp, compiled with -mavx2
 // -mfma; docs/simd.md): exp_d4, log_d4, exp_f8, exp_wide8, log_wide8, log_split_f8 and their
 // helpers in namespace shadowlab::exp_log_avx2, plain functions forced inline (no target
-// attribute: the file's flags are the set). Call them qualified (exp_log_avx2::exp_d4): while
-// core/exp_log.h also declares target-attribute forms of the same names in shadowlab, a
-// using-directive would make the calls ambiguous.
+// attribute: the file's flags are the set).
 #if !defined(__AVX2__) && !defined(SHADOWLAB_EMULATE_SIMD)
 #error "core/exp_log_avx2.h is for files compiled with -mavx2 (*_avx2.cpp, *_avx512.cpp)"
 #endif

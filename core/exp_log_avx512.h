@@ -3,8 +3,7 @@
 // -mavx512f -mavx512vl -mavx512dq -mavx512bw; docs/simd.md): exp_d8, log_d8, exp_f16,
 // exp_wide16, log_wide16, log_split_f16, and the AVX2 forms of core/exp_log_avx2.h, all in
 // namespace shadowlab::exp_log_avx512 (so that no function compiled for AVX-512 shares a name
-// with one compiled for AVX2), plain functions forced inline. Call them qualified
-// (exp_log_avx512::exp_d8), as in core/exp_log_avx2.h.
+// with one compiled for AVX2), plain functions forced inline.
 #if !defined(__AVX512F__) && !defined(SHADOWLAB_EMULATE_SIMD)
 #error "core/exp_log_avx512.h is for files compiled with -mavx512f (*_avx512.cpp)"
 #endif

@@ -1,6 +1,6 @@
 #pragma once
 // Force-included first in every file of the emulated build (-DSHADOWLAB_EMULATE_SIMD=ON,
-// core/simd_target.h): the compiler's own intrinsics header, then SIMDe's AVX-512 header
+// docs/testing.md): the compiler's own intrinsics header, then SIMDe's AVX-512 header
 // (Debian's libsimde-dev, which brings AVX2 and everything below it) with its native aliases,
 // so `_mm256_*` and `_mm512_*` and their types name SIMDe's portable implementations of
 // the same operations wherever the build does not enable the extension itself.

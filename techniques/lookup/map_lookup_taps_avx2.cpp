@@ -2,10 +2,11 @@
 // receivers in planes of one, two or four values per texel, MSM's bilinear mix, and the
 // prefetch of the next batch's rows. Compiled with -mavx2 -mfma (docs/simd.md).
 #if defined(__x86_64__)
-#include "techniques/filters/moments_common/chebyshev.h"
 #include "techniques/lookup/map_lookup_lanes_avx2.h"
 
 namespace shadowlab::lookup_avx2 {
+
+#include "techniques/filters/moments_common/chebyshev_avx2.inl"
 
 void bilinear8(const MapLookupConsts& c, const Receivers8& r,
                const PlaneGather* planes, int n, float (*values)[4][8], float* fx,

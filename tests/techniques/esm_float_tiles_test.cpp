@@ -11,7 +11,9 @@
 #include <random>
 #include <vector>
 
+#include "core/isa.h"
 #include "techniques/filters/esm/esm_float_tiles.h"
+#include "techniques/filters/esm/esm_tile_rows.h"
 #include "techniques/filters/moments_common/moment_filter.h"
 #include "techniques/pipeline/texel_tiles.h"
 
@@ -131,11 +133,11 @@ TEST(EsmFloatTiles, TakeTheTilesTheirRangeAllowsWithinTheAnalysedBound) {
   std::printf("float tiles: worst error %.3g, %.2f of its bound\n", worst_error, worst_ratio);
 }
 
-// The vector kernels (the widest the CPU has; SHADOWLAB_ISA=avx2 for the AVX2 ones) give the
-// scalar kernels' bits, on faces whose widths are no multiple of 32, 16 or 8 (the last tiles'
-// columns go through the scalar rows), with and without tiles, for every width the float path
-// takes, at c from 5 to 700 (at 700 most tiles are left).
-TEST(EsmFloatTiles, VectorKernelsGiveTheScalarBits) {
+// Every table this CPU has (techniques/filters/esm/esm_tile_rows.h) gives the scalar table's bits, on
+// faces whose widths are no multiple of 32, 16 or 8 (the last tiles' columns go through the
+// scalar rows), with and without tiles, for every width the float path takes, at c from 5 to
+// 700 (at 700 most tiles are left).
+void vector_kernels_give_the_scalar_bits() {
   for (const auto& [w, h] : {std::pair{100, 70}, std::pair{37, 41}, std::pair{1030, 35}}) {
     const std::vector<float> d = test_face(w, h, 7u);
     FaceTiles some;
@@ -154,6 +156,15 @@ TEST(EsmFloatTiles, VectorKernelsGiveTheScalarBits) {
           ASSERT_EQ(std::memcmp(fast.data(), slow.data(), d.size() * 4), 0)
               << w << "x" << h << " k " << k << " c " << c << (tiles ? " tiles" : "");
         }
+  }
+}
+
+TEST(EsmFloatTiles, VectorKernelsGiveTheScalarBits) {
+  for (const Isa isa : cpu_isas()) {
+    const ScopedIsa guard(isa);
+    SCOPED_TRACE(isa_name(isa));
+    ASSERT_EQ(esm_tile_kernels(process_isa()).isa, isa);
+    vector_kernels_give_the_scalar_bits();
   }
 }
 

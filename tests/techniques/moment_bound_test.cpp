@@ -2,8 +2,8 @@
 // computations: the Hankel solve against long-double Gaussian elimination; distributions whose
 // bound is known in closed form (two Dirac deltas, whose moments determine them; three atoms at
 // 0, u and 1 for the Hausdorff bound); the lower-bound property on random distributions; the
-// 16-bit quantization's matrices; the AVX2 lanes against the scalar bits.
-#include "core/simd_target.h"
+// 16-bit quantization's matrices; the vector lanes (techniques/lookup/lookup_batches.h) against the
+// scalar bits.
 #include "techniques/filters/msm/moment_bound.h"
 
 #include <fmt/format.h>
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/isa.h"
+#include "techniques/lookup/lookup_batches.h"
 
 namespace shadowlab {
 namespace {
@@ -212,49 +213,6 @@ TEST(MomentBound, SixteenBitQuantizationMatricesAreInversesAndFitUnorm) {
   EXPECT_LE(hi, 1.0);
 }
 
-#if defined(__x86_64__)
-// The kernels on lanes m[k][lane] (moment k + 1), z[lane].
-SL_TARGET("avx2") void intensity4(const double (*m)[32], const double* z,
-                                  double alpha, bool hausdorff, double* out) {
-  __m256d mv[1][4], g;
-  for (int k = 0; k < 4; ++k) mv[0][k] = _mm256_loadu_pd(m[k]);
-  const __m256d zv = _mm256_loadu_pd(z);
-  msm_intensity4n<1>(mv, &zv, alpha, hausdorff, &g);
-  _mm256_storeu_pd(out, g);
-}
-// Two groups of 4 side by side (msm_intensity4n<2>, the AVX2 batch's halves).
-SL_TARGET("avx2") void intensity4x2(const double (*m)[32], const double* z,
-                                    double alpha, bool hausdorff, double* out) {
-  __m256d mv[2][4], zv[2], g[2];
-  for (int h = 0; h < 2; ++h) {
-    for (int k = 0; k < 4; ++k) mv[h][k] = _mm256_loadu_pd(m[k] + 4 * h);
-    zv[h] = _mm256_loadu_pd(z + 4 * h);
-  }
-  msm_intensity4n<2>(mv, zv, alpha, hausdorff, g);
-  for (int h = 0; h < 2; ++h) _mm256_storeu_pd(out + 4 * h, g[h]);
-}
-SL_TARGET("avx512f,avx512dq") void intensity8(const double (*m)[32],
-                                              const double* z, double alpha,
-                                              bool hausdorff, double* out) {
-  __m512d mv[1][4], g;
-  for (int k = 0; k < 4; ++k) mv[0][k] = _mm512_loadu_pd(m[k]);
-  const __m512d zv = _mm512_loadu_pd(z);
-  msm_intensity8n<1>(mv, &zv, alpha, hausdorff, &g);
-  _mm512_storeu_pd(out, g);
-}
-// Four groups of 8 side by side (msm_intensity8n<4>, the MSM lookup's groups of batches).
-SL_TARGET("avx512f,avx512dq") void intensity8x4(const double (*m)[32],
-                                                const double* z, double alpha,
-                                                bool hausdorff, double* out) {
-  __m512d mv[4][4], zv[4], g[4];
-  for (int h = 0; h < 4; ++h) {
-    for (int k = 0; k < 4; ++k) mv[h][k] = _mm512_loadu_pd(m[k] + 8 * h);
-    zv[h] = _mm512_loadu_pd(z + 8 * h);
-  }
-  msm_intensity8n<4>(mv, zv, alpha, hausdorff, g);
-  for (int h = 0; h < 4; ++h) _mm512_storeu_pd(out + 8 * h, g[h]);
-}
-
 // A `lanes`-wide form against the scalar bits: random distributions, α = 0 (singular and NaN
 // lanes included: one-depth footprints) and the default, both variants.
 template <class Kernel>
@@ -287,22 +245,25 @@ void expect_scalar_bits(int lanes, const Kernel& kernel) {
   EXPECT_EQ(compared, 4000 * lanes * 6);
 }
 
-TEST(MomentBound, AvxLanesGiveTheScalarBits) {
-  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
-  expect_scalar_bits(4, intensity4);
-  expect_scalar_bits(8, intensity4x2);
+// Every table this CPU has (techniques/lookup/lookup_batches.h): its reconstruction on one group of
+// lanes and on the groups the MSM lookup runs side by side (AVX2: 2 × 4, AVX-512: 4 × 8).
+TEST(MomentBound, EveryTablesLanesGiveTheScalarBits) {
+  int tables = 0;
+  for (const Isa isa : cpu_isas()) {
+    const LookupBatchKernels& k = lookup_batch_kernels(isa);
+    if (isa == Isa::scalar) {
+      EXPECT_EQ(k.msm_intensity, nullptr);
+      continue;
+    }
+    SCOPED_TRACE(isa_name(isa));
+    ASSERT_EQ(k.isa, isa);
+    ASSERT_LE(k.msm_lanes_groups, 32);
+    expect_scalar_bits(k.msm_lanes, k.msm_intensity);
+    expect_scalar_bits(k.msm_lanes_groups, k.msm_intensity_groups);
+    ++tables;
+  }
+  EXPECT_EQ(tables, int(cpu_isas().size()) - 1);
 }
-
-TEST(MomentBound, Avx512LanesGiveTheScalarBits) {
-  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
-  expect_scalar_bits(8, intensity8);
-}
-
-TEST(MomentBound, Avx512GroupsOfLanesGiveTheScalarBits) {
-  if (cpu_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
-  expect_scalar_bits(32, intensity8x4);
-}
-#endif
 
 }  // namespace
 }  // namespace shadowlab

@@ -186,17 +186,16 @@ void fixed_width_kernels_equal_the_runtime_width_loops() {
   }
 }
 
+// For every table this CPU has (techniques/filters/moments_common/moment_rows.h; SHADOWLAB_ISA=avx2 and
+// SHADOWLAB_SCALAR=1 choose the narrower ones): the filters through that table against the
+// oracles, which run the scalar table's runtime-width loops.
 TEST(MomentFilter, FixedWidthKernelsEqualTheRuntimeWidthLoopsBitForBit) {
-  fixed_width_kernels_equal_the_runtime_width_loops();
-}
-
-// The same with the AVX-512 rows switched off (as SHADOWLAB_ISA=avx2 does): on an AVX-512
-// machine the AVX2 exp, log and warp rows run only here.
-TEST(MomentFilter, Avx2KernelsEqualTheRuntimeWidthLoopsBitForBit) {
-  if (cpu_isa() < Isa::avx2) GTEST_SKIP() << "no AVX2 on this CPU";
-  const ScopedIsa guard(Isa::avx2);
-  ASSERT_NE(process_isa(), Isa::avx512);
-  fixed_width_kernels_equal_the_runtime_width_loops();
+  for (const Isa isa : cpu_isas()) {
+    const ScopedIsa guard(isa);
+    SCOPED_TRACE(isa_name(isa));
+    ASSERT_EQ(process_isa(), isa);
+    fixed_width_kernels_equal_the_runtime_width_loops();
+  }
 }
 
 // MSM's four power moments are the window means of d, d², d³, d⁴ (long double brute force,

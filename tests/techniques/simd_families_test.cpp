@@ -12,8 +12,11 @@
 
 #include "core/isa.h"
 #include "techniques/filters/moments_common/centred_window3.h"
+#include "techniques/filters/esm/esm_tile_rows.h"
 #include "techniques/pipeline/face_rows.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/lookup/map_lookup_simd.h"
+#include "techniques/filters/moments_common/moment_rows.h"
 
 namespace shadowlab {
 namespace {
@@ -23,18 +26,36 @@ TEST(SimdFamilies, EachFamilyRunsTheProcessesInstructionSet) {
   const Isa window = centred_window3_kernels(isa).isa;
   const Isa rows = face_row_kernels(isa).isa;
   const Isa lookup = lookup_kernels(isa).isa;
-  std::printf("process %s: centred_window3 %s, face_rows %s, lookup %s\n", isa_name(isa),
-              isa_name(window), isa_name(rows), isa_name(lookup));
-  // The window and face row families have a table per set; the lookup's widest is AVX2.
+  const Isa moments = moment_row_kernels(isa).isa;
+  const Isa esm_tiles = esm_tile_kernels(isa).isa;
+  const Isa batches = lookup_batch_kernels(isa).isa;
+  std::printf(
+      "process %s: centred_window3 %s, face_rows %s, lookup %s, moment_rows %s, esm_tiles %s, "
+      "lookup_batches %s\n",
+      isa_name(isa), isa_name(window), isa_name(rows), isa_name(lookup), isa_name(moments),
+      isa_name(esm_tiles), isa_name(batches));
+  // The window, face row and moment row families have a table per set; the lookup's widest is
+  // AVX2.
   EXPECT_EQ(window, isa);
   EXPECT_EQ(rows, isa);
+  EXPECT_EQ(moments, isa);
+  EXPECT_EQ(esm_tiles, isa);
+  EXPECT_EQ(batches, isa);
   EXPECT_EQ(lookup, std::min(isa, Isa::avx2));
   // The scalar tables: the window's row, the lookup's merge and no batch kernels.
   EXPECT_EQ(centred_window3_kernels(Isa::scalar).isa, Isa::scalar);
   EXPECT_EQ(lookup_kernels(Isa::scalar).receivers8, nullptr);
   EXPECT_NE(lookup_kernels(Isa::scalar).merge8, nullptr);
+  EXPECT_EQ(moment_row_kernels(Isa::scalar).msm_hsum_out[0], nullptr);
+  EXPECT_EQ(esm_tile_kernels(Isa::scalar).box_tile, nullptr);
+  EXPECT_EQ(lookup_batch_kernels(Isa::scalar).vsm_batch, nullptr);
   if (isa != Isa::scalar) {
     EXPECT_NE(lookup_kernels(isa).receivers8, nullptr);
+    EXPECT_NE(moment_row_kernels(isa).msm_hsum_out[0], nullptr);
+    EXPECT_NE(esm_tile_kernels(isa).box_tile, nullptr);
+    EXPECT_NE(lookup_batch_kernels(isa).vsm_batch, nullptr);
+    // MSM's reconstruction runs in 8 lanes exactly with the AVX-512 table.
+    EXPECT_EQ(lookup_batch_kernels(isa).msm_taps1 != nullptr, isa == Isa::avx512);
   }
 }
 

@@ -3,16 +3,13 @@
 #include <algorithm>
 
 #include <fmt/format.h>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 #include <cmath>
 #include <cstdio>
 
 #include "core/isa.h"
 #include "core/error.h"
 #include "core/exp_log.h"
-#include "core/simd_target.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 
@@ -45,7 +42,7 @@ void filter(const MapParams& p, LightMap& map) {
 }
 
 // One occluder term, e^(z − c·t) in float (core/exp_log.h's exp_f, whose steps the AVX2 batch
-// below repeats, so both give the same bits). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
+// repeats, so both give the same bits: techniques/lookup/lookup_batches.h). The exponent is clamped to [-87, 80]: e^80 ≈ 5.5e34
 // keeps four terms finite in float (any such tap already makes the sum >= 1 unless its weight
 // is below e^-80, and the result is clamped to 1); below -87 a term counts as e^-87 ≈ 1.6e-38
 // instead of less, a difference far below float's resolution of any sum it enters.
@@ -60,38 +57,14 @@ inline float esm_combine(float z00, float z10, float z01, float z11, float fx, f
   return std::min(v, 1.0f);
 }
 
-// The lane arithmetic of 8 pixels at once (the loads before it are per lane): esm_combine with
-// AVX2 intrinsics, the same operations in the same order (exp_f8: exp_f's steps; std::min(a, b) is
-// b < a ? b : a, i.e. _mm256_min_ps(b, a)). The compiler left the plain loop scalar.
-#if defined(__x86_64__)
-SL_TARGET("avx2") void esm_combine8_avx2(const float (*z)[8], const float* fx,
-                                         const float* fy, const float* ct,
-                                         float* out) {
-  const __m256 vct = _mm256_loadu_ps(ct), one = _mm256_set1_ps(1.0f);
-  __m256 e[4];
-  for (int i = 0; i < 4; ++i) {
-    const __m256 d = _mm256_sub_ps(_mm256_loadu_ps(z[i]), vct);
-    e[i] = exp_f8(_mm256_max_ps(_mm256_set1_ps(-87.0f), _mm256_min_ps(_mm256_set1_ps(80.0f), d)));
-  }
-  const __m256 vx = _mm256_loadu_ps(fx), vy = _mm256_loadu_ps(fy);
-  const __m256 ox = _mm256_sub_ps(one, vx), oy = _mm256_sub_ps(one, vy);
-  const __m256 v = _mm256_add_ps(
-      _mm256_mul_ps(oy, _mm256_add_ps(_mm256_mul_ps(ox, e[0]), _mm256_mul_ps(vx, e[1]))),
-      _mm256_mul_ps(vy, _mm256_add_ps(_mm256_mul_ps(ox, e[2]), _mm256_mul_ps(vx, e[3]))));
-  _mm256_storeu_ps(out, _mm256_min_ps(one, v));
-}
-#endif
-
-// avx2: process_isa() >= Isa::avx2, read once per lookup by the caller (a call per 8 pixels
-// costs more than the choice is worth).
-void esm_combine8(bool avx2, const float (*z)[8], const float* fx, const float* fy,
+// esm_combine for 8 lanes: the table's kernel (techniques/lookup/lookup_batches.h: the same operations
+// in the same order), or lane by lane where it has none.
+void esm_combine8(EsmCombine8Fn kernel, const float (*z)[8], const float* fx, const float* fy,
                   const float* ct, float* out) {
-#if defined(__x86_64__)
-  if (avx2) {
-    esm_combine8_avx2(z, fx, fy, ct, out);
+  if (kernel) {
+    kernel(z, fx, fy, ct, out);
     return;
   }
-#endif
   for (int k = 0; k < 8; ++k)
     out[k] = esm_combine(z[0][k], z[1][k], z[2][k], z[3][k], fx[k], fy[k], ct[k]);
 }
@@ -103,7 +76,7 @@ struct EsmBatch {
   static constexpr bool kEnabled = true;
   const Taps& taps_of;
   float cf;
-  bool avx2;  // process_isa() >= Isa::avx2 at the lookup's start
+  EsmCombine8Fn combine8;  // the lookup batch table's, nullptr in the scalar one
   Bilinear8Fn bilinear8;
   PlaneGather a;
   Prefetch8Fn prefetch8;
@@ -124,7 +97,7 @@ struct EsmBatch {
       }
     }
     for (int k = 0; k < 8; ++k) ct[k] = cf * r.depth[k];
-    esm_combine8(avx2, z[0], fx, fy, ct, out);
+    esm_combine8(combine8, z[0], fx, fy, ct, out);
   }
 };
 
@@ -149,8 +122,10 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   };
   const LookupKernels& kernels = lookup_kernels(process_isa());
   lookup_pixels(scene, g, p, map, mask, texels, visibility,
-                EsmBatch<decltype(taps)>{taps, cf, kernels.isa >= Isa::avx2, kernels.bilinear8,
-                                         plane_gather(map.a), kernels.prefetch8});
+                EsmBatch<decltype(taps)>{taps, cf,
+                                         lookup_batch_kernels(process_isa()).esm_combine8,
+                                         kernels.bilinear8, plane_gather(map.a),
+                                         kernels.prefetch8});
 }
 
 uint64_t taps_per_lookup(const MapParams&) { return 4; }  // bilinear

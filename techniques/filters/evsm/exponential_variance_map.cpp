@@ -7,16 +7,13 @@
 // exponential warp shrinks the overlap that makes VSM leak light (docs/design.md §6, EVSM).
 #include <algorithm>
 #include <cmath>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "core/exp_log.h"
-#include "core/simd_target.h"
 #include "techniques/filters/moments_common/chebyshev.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 
@@ -82,12 +79,7 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-struct EvsmConsts {
-  double c_pos, c_neg;
-  double min_var;  // variance floor of the normalised distance
-  double bleed;
-  bool four;
-};
+using EvsmConsts = EvsmLookupConsts;  // techniques/lookup/lookup_batches.h
 
 // One warp's bound at normalised receiver depth t: the mixture of the 4 taps' moments (A mean,
 // B variance), the floor carried into the warp by its slope dv/dt = 2c·e^(±c·t') at the
@@ -112,60 +104,15 @@ float evsm_value(const EvsmConsts& k, const float* PA, const float* PB, const fl
   return std::min(pos, warp_bound(k, w, NA, NB, t, k.c_neg, -1.0));
 }
 
-#if defined(__x86_64__)
-#define SL_AVX2 SL_TARGET("avx2")
-// warp_bound for 4 lanes in double with AVX2 intrinsics: its operations in its order
-// (std::max(a, b) is a < b ? b : a, std::clamp likewise; exp_d4 gives exp_d's bits), so the
-// lanes get warp_bound's bits before the final rounding to float.
-SL_AVX2 __m256d warp_bound4(const EvsmConsts& k, const __m256d* w, const __m256d* A,
-                            const __m256d* B, __m256d t, double c, double sign) {
-  const __m256d one = _mm256_set1_pd(1.0);
-  const __m256d x = _mm256_mul_pd(_mm256_set1_pd(sign * c),
-                                  _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), t), one));
-  const __m256d e = exp_d4(x);
-  const __m256d slope = _mm256_mul_pd(_mm256_set1_pd(2.0 * c), e);
-  __m256d mean, var;
-  mixture_moments4(w, A, B, mean, var);
-  const __m256d min_var = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(k.min_var), slope), slope);
-  return chebyshev4(_mm256_mul_pd(_mm256_set1_pd(sign), e), mean, var, min_var, k.bleed);
-}
-
-// evsm_value for the 8 lanes of a batch, in two halves of 4 doubles.
-SL_AVX2 void evsm_batch_avx2(const EvsmConsts& k, const float (*v)[4][8], const float* fx,
-                             const float* fy, const float* depth, float* out) {
-  for (int half = 0; half < 2; ++half) {
-    const __m256d vx = _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half));
-    const __m256d vy = _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half));
-    __m256d w[4];
-    bilinear_weights4(vx, vy, w);
-    const __m256d t = _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half));
-    __m256d A[4], B[4];
-    for (int i = 0; i < 4; ++i) {
-      A[i] = _mm256_cvtps_pd(_mm_load_ps(v[0][i] + 4 * half));
-      B[i] = _mm256_cvtps_pd(_mm_load_ps(v[1][i] + 4 * half));
-    }
-    __m128 res = _mm256_cvtpd_ps(warp_bound4(k, w, A, B, t, k.c_pos, 1.0));
-    if (k.four) {
-      for (int i = 0; i < 4; ++i) {
-        A[i] = _mm256_cvtps_pd(_mm_load_ps(v[2][i] + 4 * half));
-        B[i] = _mm256_cvtps_pd(_mm_load_ps(v[3][i] + 4 * half));
-      }
-      // std::min(pos, neg) = neg < pos ? neg : pos.
-      res = _mm_min_ps(_mm256_cvtpd_ps(warp_bound4(k, w, A, B, t, k.c_neg, -1.0)), res);
-    }
-    _mm_storeu_ps(out + 4 * half, res);
-  }
-}
-#undef SL_AVX2
-#endif
-
 // 8 lanes at once: each warp's interleaved bilinear taps loaded by the AVX2 kernel, then
-// evsm_value's arithmetic in AVX2 double (evsm_batch_avx2). Used only where the AVX2 kernels
-// exist (the scalar table's bilinear8_interleaved2 is null, and the scalar loop runs evsm_value).
+// evsm_value's arithmetic in AVX2 double (the lookup batch table's evsm_batch). Used only where
+// the AVX2 kernels exist (the scalar tables' bilinear8_interleaved2 and evsm_batch are null, and
+// the scalar loop runs evsm_value).
 struct EvsmBatch {
   static constexpr bool kEnabled = true;
   EvsmConsts k;
   Bilinear8x2Fn taps;  // the 2- or 4-value kernel
+  EvsmBatchFn evsm_batch;
   PlaneGather moments;  // a
   Prefetch8Fn prefetch8;
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
@@ -174,9 +121,7 @@ struct EvsmBatch {
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
     alignas(32) float v[4][4][8], fx[8], fy[8];
     taps(c, r, moments, v, fx, fy);
-#if defined(__x86_64__)
-    evsm_batch_avx2(k, v, fx, fy, r.depth, out);
-#endif
+    evsm_batch(k, v, fx, fy, r.depth, out);
   }
 };
 
@@ -202,8 +147,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   };
   const LookupKernels& kernels = lookup_kernels(process_isa());
   EvsmBatch batch{k, k.four ? kernels.bilinear8_interleaved4 : kernels.bilinear8_interleaved2,
-                  plane_gather(map.a), kernels.prefetch8};
-  const bool gathers = batch.taps != nullptr && batch.moments.ok;
+                  lookup_batch_kernels(process_isa()).evsm_batch, plane_gather(map.a),
+                  kernels.prefetch8};
+  const bool gathers = batch.taps != nullptr && batch.evsm_batch != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

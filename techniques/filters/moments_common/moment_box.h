@@ -2,9 +2,9 @@
 // The shared machinery of the moment filters (techniques/filters/moments_common/moment_filter.h), included only by
 // their files: moment_filter.cpp (VSM's and EVSM's mean and variance), moment_filter_msm.cpp
 // (MSM's four power moments and their line writers) and moment_filter_esm.cpp (ESM's log-space
-// box). Here: the finite-distance helpers, the runtime-width row sums (the fixed-width kernels'
-// oracle), the choice of exp and log kernels, the span columns, the fused separable box driver
-// and the compiled widths.
+// box). Here: the finite-distance helpers, the choice of row kernel table, the span columns, the
+// fused separable box driver and the compiled widths; the row kernels themselves are a kernel
+// family (techniques/filters/moments_common/moment_rows.h).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -17,43 +17,18 @@
 #include "core/isa.h"
 #include "core/prefetch.h"
 #include "core/error.h"
-#include "core/exp_log.h"
 #include "core/parallel.h"
-#include "core/simd_target.h"
 #include "core/stream_copy.h"
 #include "techniques/filters/moments_common/centred_window3.h"
 #include "techniques/filters/esm/esm_float_tiles.h"
+#include "techniques/filters/moments_common/moment_rows.h"
 #include "techniques/pipeline/texel_tiles.h"
 
 namespace shadowlab {
 namespace {
 
-// The row kernels are compiled for AVX-512, AVX2 and baseline x86-64, picked at load time
-// (SL_ROW_CLONES is this header's, for the three moment filter files);
-// element-wise IEEE arithmetic (no FMA: -ffp-contract=off) gives the same bits in every clone.
-// clang 14 (the sanitizer and fuzz builds of CI) has no target_clones on templates: there the
-// kernels are baseline only, which gives the same bits.
-#if defined(__clang__)
-#define SL_ROW_CLONES
-#else
-#define SL_ROW_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-
 // Distance with "nothing seen" as the light's range: d < 1 ? d : 1.
 inline float finite_dist(float d) { return d < 1.0f ? d : 1.0f; }
-
-// finite_dist and v > 0 ? v : +0 as bit masks: the same values, but GCC if-converts (and so
-// vectorizes) a ?: on doubles or floats only when AVX is on for the whole file, not in the
-// target_clones kernels below; a compare turned into an integer mask is no control flow.
-inline float finite_dist_bits(float d) {
-  const uint32_t keep = uint32_t(0) - uint32_t(d < 1.0f);
-  return std::bit_cast<float>((std::bit_cast<uint32_t>(d) & keep) |
-                              (std::bit_cast<uint32_t>(1.0f) & ~keep));
-}
-inline double positive_part(double v) {
-  const uint64_t keep = uint64_t(0) - uint64_t(v > 0.0);
-  return std::bit_cast<double>(std::bit_cast<uint64_t>(v) & keep);
-}
 
 // Smaller-magnitude one-sided difference of a row/column sample (neighbours clamped).
 inline double min_diff(double prev, double here, double next) {
@@ -61,37 +36,12 @@ inline double min_diff(double prev, double here, double next) {
   return std::fabs(a) <= std::fabs(b) ? a : b;
 }
 
-// The row loops of the fused separable box (fused_box below; filter_moments_double,
-// filter_esm_log and filter_warped_moments): each input row's k-wide horizontal sums, then each
-// output row's sum of its k rows. Every output is the same sequence of double additions as
-// box_mean's two passes (left to right, then top to bottom, then × 1/k²); the loops run over x,
-// which the compiler vectorizes without reordering any one texel's additions.
-
-// out[x] = Σ_{i=0}^{k-1} ext[x + i], added in i order (ext: the row extended by k/2 clamped
-// texels on each side).
-template <class T>
-SL_ROW_CLONES void hsum_row(const T* ext, int w, int k, T* out) {
-  for (int x = 0; x < w; ++x) out[x] = T(0);
-  for (int i = 0; i < k; ++i)
-    for (int x = 0; x < w; ++x) out[x] += ext[x + i];
+// A filter's row kernels (techniques/filters/moments_common/moment_rows.h), chosen once per filter: the table of
+// process_isa(); the oracles (fixed_kernels false) take the scalar table, so the tests'
+// comparisons of the two also compare the tables bit for bit.
+inline const MomentRowKernels& row_kernels(bool fast) {
+  return moment_row_kernels(fast ? process_isa() : Isa::scalar);
 }
-
-// dst[x] = (rows[0][x] + rows[1][x] + … + rows[k-1][x]) × inv, added in row order.
-template <class T>
-SL_ROW_CLONES void vsum_rows(const T* const* rows, int w, int k, T inv, T* dst) {
-  for (int x = 0; x < w; ++x) dst[x] = rows[0][x];
-  for (int j = 1; j < k; ++j)
-    for (int x = 0; x < w; ++x) dst[x] += rows[j][x];
-  for (int x = 0; x < w; ++x) dst[x] *= inv;
-}
-
-// The exp and log kernels a filter's rows use, chosen once per filter (core/isa.h; a
-// getenv per row would cost more than some rows): ESM's exp_wide16 and log_wide16 (AVX-512),
-// exp_wide8 and log_wide8 (AVX2) or the scalar exp_wide and log_wide, EVSM's exp_f16, exp_f8 or
-// exp_f, each set giving the same bits (core/exp_log.h). The
-// oracles (fixed_kernels false) take the scalar ones, so the tests' comparisons of the two also
-// compare the kernels bit for bit.
-inline Isa exp_path(bool fast) { return fast ? process_isa() : Isa::scalar; }
 
 // Output columns [x0, x0 + n) of a row and the input columns their k-wide windows read:
 // [in0, in0 + in_n) of the image (clipped to it), placed at ext[lead ..] of the extended row,
@@ -117,39 +67,6 @@ inline void extend_span(T* ext, const SpanCols& c, int k) {
   for (int i = 0; i < c.lead; ++i) ext[i] = ext[c.lead];
   const int end = c.lead + c.in_n, total = c.n + k - 1;
   for (int i = end; i < total; ++i) ext[i] = ext[end - 1];
-}
-
-// Kernels for the common box widths with k a compile-time constant, so each x iteration keeps
-// its k-term sums in registers instead of re-reading and re-storing whole rows (the runtime-k
-// loops above, kept for other widths and the slope term). The additions are the same, in the
-// same order: a sum starts from 0.0 (as the runtime-k hsum_row does) and adds left to right,
-// rows top to bottom, then × 1/k²; so either path gives the other's bits.
-
-// Texels to write one by one before out + S·x starts a 64-byte line (S floats per texel), so the
-// vector stores after them do not straddle cache lines: large vectors' storage is 16-byte
-// aligned here (glibc's mmap chunks), and a 64-byte store across two lines costs about two.
-// A row whose texels never start a line returns `unreachable`: 0 for ordinary stores (they may
-// straddle), w where the stores need aligned addresses (then every texel goes one by one).
-inline int texels_to_line(const float* out, int floats_per_texel, int w, int unreachable = 0) {
-  const uintptr_t bytes = (64 - (reinterpret_cast<uintptr_t>(out) & 63)) & 63;
-  const uintptr_t texel_bytes = uintptr_t(floats_per_texel) * 4;
-  if (bytes % texel_bytes != 0) return unreachable;
-  return std::min(w, int(bytes / texel_bytes));
-}
-
-// ESM: h[x] = Σ_i ext[x + i] (ext: the row's exponentials, extended).
-template <int K>
-SL_ROW_CLONES void hsum_k(const double* ext, int w, double* h) {
-  for (int x = 0; x < w; ++x) {
-    double s = 0.0;
-    for (int i = 0; i < K; ++i) s += ext[x + i];
-    h[x] = s;
-  }
-}
-
-// The finite values of a row's n texels: out[x] = finite_dist(row[x]) (VSM's kernels' input).
-[[maybe_unused]] SL_ROW_CLONES void finite_row(const float* row, int n, float* out) {
-  for (int x = 0; x < n; ++x) out[x] = finite_dist_bits(row[x]);
 }
 
 // The fused separable box over `planes` planes of sums of type T (double; MSM's float), as a ring

@@ -82,236 +82,6 @@ void raw_moments(const float* dist, int w, int h, bool slope_term, std::vector<T
   });
 }
 
-// Row r of raw_moments without the slope term: m1 = d, m2 = d² (d = finite_dist).
-SL_ROW_CLONES void moment_row(const float* row, int w, double* m1, double* m2) {
-  for (int x = 0; x < w; ++x) {
-    const double d = double(finite_dist_bits(row[x]));
-    m1[x] = d;
-    m2[x] = d * d;
-  }
-}
-
-// Mean and variance floats of filtered moment rows (filter_moments_double's storage).
-SL_ROW_CLONES void mean_variance_row(const double* m1, const double* m2, int w, float* mean,
-                                    float* var) {
-  for (int x = 0; x < w; ++x) {
-    mean[x] = float(m1[x]);
-    const double v = m2[x] - m1[x] * m1[x];
-    var[x] = float(positive_part(v));
-  }
-}
-
-// EVSM's warped moments of one row: m1 = v = sign·e^(sign·c·(2d − 1)), m2 = v², the warp in
-// float (exp_f of float(sign·c)·((d + d) − 1)), its moments and sums in double. Why float is
-// exact enough for the warp: its rounding moves v by at most ~4e-6 relative (the argument's
-// roundings, |x| <= 44.4, and exp_f's 2 ulp), which is what a change of d by 1–2 of its own
-// float ulps does (dv/v = 2c·dd, c <= 44.4); the variance, whose cancellation needs double, is
-// formed from the double sums (docs/techniques/evsm.md).
-SL_ROW_CLONES void warped_row_scalar(const float* row, int w, double c, double sign, double* m1,
-                                     double* m2) {
-  const float sc = float(sign * c);
-  for (int x = 0; x < w; ++x) {
-    const float d = finite_dist_bits(row[x]);
-    const double v = sign * double(exp_f(sc * ((d + d) - 1.0f)));
-    m1[x] = v;
-    m2[x] = v * v;
-  }
-}
-
-#if defined(__x86_64__)
-// EVSM's warp alone, as floats: v[x] = sign·exp_f(float(sign·c)·((d + d) − 1)), the value
-// warped_row_scalar forms (its v is that float, widened; sign = ±1, so the product is exact).
-// The fixed-width path sums these floats' moments by hsum_moments_k (v and v² formed in double
-// there, as VSM's are), so the row kernel writes 4 bytes per texel instead of two doubles' 16.
-// 16 (AVX-512) and 8 (AVX2) floats at a time by exp_f16 / exp_f8; min(d, 1) is finite_dist as
-// above; the tail by the scalar loop.
-SL_ROW_CLONES void warp_row_f_scalar(const float* row, int w, double c, double sign, float* v) {
-  const float sc = float(sign * c), fs = float(sign);
-  for (int x = 0; x < w; ++x) {
-    const float d = finite_dist_bits(row[x]);
-    v[x] = fs * exp_f(sc * ((d + d) - 1.0f));
-  }
-}
-
-SL_TARGET("avx512f") void warp_row_f_avx512(const float* row, int w, double c,
-                                            double sign, float* v) {
-  const __m512 one = _mm512_set1_ps(1.0f), sc = _mm512_set1_ps(float(sign * c));
-  const __m512 fs = _mm512_set1_ps(float(sign));
-  int x = 0;
-  for (; x + 16 <= w; x += 16) {
-    // (Zero-masked forms with every lane on, for GCC 12's -Wmaybe-uninitialized: exp_d8.)
-    const __m512 d = _mm512_maskz_min_ps(0xFFFF, _mm512_loadu_ps(row + x), one);
-    const __m512 e = exp_f16(_mm512_mul_ps(sc, _mm512_sub_ps(_mm512_add_ps(d, d), one)));
-    _mm512_storeu_ps(v + x, _mm512_mul_ps(fs, e));
-  }
-  warp_row_f_scalar(row + x, w - x, c, sign, v + x);
-}
-
-SL_TARGET("avx2") void warp_row_f_avx2(const float* row, int w, double c,
-                                       double sign, float* v) {
-  const __m256 one = _mm256_set1_ps(1.0f), sc = _mm256_set1_ps(float(sign * c));
-  const __m256 fs = _mm256_set1_ps(float(sign));
-  int x = 0;
-  for (; x + 8 <= w; x += 8) {
-    const __m256 d = _mm256_min_ps(_mm256_loadu_ps(row + x), one);
-    const __m256 e = exp_f8(_mm256_mul_ps(sc, _mm256_sub_ps(_mm256_add_ps(d, d), one)));
-    _mm256_storeu_ps(v + x, _mm256_mul_ps(fs, e));
-  }
-  warp_row_f_scalar(row + x, w - x, c, sign, v + x);
-}
-#endif
-
-void warp_row_f(Isa path, const float* row, int w, double c, double sign, float* v) {
-#if defined(__x86_64__)
-  if (path == Isa::avx512) return warp_row_f_avx512(row, w, c, sign, v);
-  if (path == Isa::avx2) return warp_row_f_avx2(row, w, c, sign, v);
-#endif
-  warp_row_f_scalar(row, w, c, sign, v);
-}
-
-// VSM: h1[x] = Σ_i d, h2[x] = Σ_i d² over ext[x .. x + K − 1] (ext: the clamped finite row).
-template <int K>
-SL_ROW_CLONES void hsum_moments_k(const float* ext, int w, double* h1, double* h2) {
-  for (int x = 0; x < w; ++x) {
-    double s1 = 0.0, s2 = 0.0;
-    for (int i = 0; i < K; ++i) {
-      const double d = double(ext[x + i]);
-      s1 += d;
-      s2 += d * d;
-    }
-    h1[x] = s1;
-    h2[x] = s2;
-  }
-}
-
-// VSM: the K rows of both planes summed, × inv, stored as mean and variance floats.
-template <int K>
-SL_ROW_CLONES void vsm_out_k(const double* const* rows, int w, double inv, float* mean,
-                             float* var) {
-  const double* r1[K];
-  const double* r2[K];
-  for (int j = 0; j < K; ++j) {
-    r1[j] = rows[j];
-    r2[j] = rows[K + j];
-  }
-  for (int x = 0; x < w; ++x) {
-    double a = r1[0][x], b = r2[0][x];
-    for (int j = 1; j < K; ++j) {
-      a += r1[j][x];
-      b += r2[j][x];
-    }
-    a *= inv;
-    b *= inv;
-    mean[x] = float(a);
-    const double v = b - a * a;
-    var[x] = float(positive_part(v));
-  }
-}
-
-// out[2x] = a[x], out[2x + 1] = b[x]: two rows into one interleaved row (a zip the compiler
-// vectorizes; the strided stores of writing the interleaved row directly did not, and made the
-// VSM filter ~25 % slower).
-SL_ROW_CLONES void interleave_row(const float* a, const float* b, int w, float* out) {
-  const int head = texels_to_line(out, 2, w);
-  for (int x = 0; x < head; ++x) {
-    out[2 * x] = a[x];
-    out[2 * x + 1] = b[x];
-  }
-  for (int x = head; x < w; ++x) {
-    out[2 * x] = a[x];
-    out[2 * x + 1] = b[x];
-  }
-}
-
-#if defined(__x86_64__)
-// rows[0][x] + rows[1][x] + … + rows[K − 1][x], added in row order (mean_out_k's sum), for one
-// texel and for 8 (AVX-512): the output kernels' sums of K filtered rows.
-template <int K>
-inline double sum_rows(const double* const* rows, int x) {
-  double a = rows[0][x];
-  for (int j = 1; j < K; ++j) a += rows[j][x];
-  return a;
-}
-// One texel of the fused output rows, for their heads and tails (the vector steps' operations):
-// VSM's (mean, variance) from rows[0 .. K − 1] and rows[K .. 2K − 1].
-template <int K>
-inline void vsm_out_texel(const double* const* rows, int x, double inv, float* out) {
-  const double a = sum_rows<K>(rows, x) * inv, b = sum_rows<K>(rows + K, x) * inv;
-  out[2 * x] = float(a);
-  out[2 * x + 1] = float(positive_part(b - a * a));
-}
-template <int K>
-SL_TARGET("avx512f") inline __m512d sum_rows8(const double* const* rows, int x) {
-  __m512d a = _mm512_loadu_pd(rows[0] + x);
-  for (int j = 1; j < K; ++j) a = _mm512_add_pd(a, _mm512_loadu_pd(rows[j] + x));
-  return a;
-}
-
-// VSM's (and EVSM's two-value) output row straight into the interleaved plane: vsm_out_k's sums,
-// products and positive part for both planes (rows[0 .. K − 1] the first moments', rows[K ..
-// 2K − 1] the second's), 8 texels at a time, zipped to (mean, variance) per texel and stored as
-// one 64-byte line per 8 texels with ordinary stores (VSM keeps its map in the caches for the
-// lookup: docs/performance.md). What vsm_out_k into scratch and interleave_row did in
-// two passes, in one; the same bits (MomentFilter.FixedWidthKernelsEqualTheRuntimeWidthLoops-
-// BitForBit). Texels before the first line and after the last whole 8 go one by one.
-template <int K>
-SL_TARGET("avx512f") void vsm_out_interleaved_avx512(const double* const* rows,
-                                                     int w, double inv,
-                                                     float* out) {
-  const int head = texels_to_line(out, 2, w);
-  int x = 0;
-  for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
-  const __m512d vinv = _mm512_set1_pd(inv), zero = _mm512_setzero_pd();
-  for (; x + 8 <= w; x += 8) {
-    const __m512d a = _mm512_mul_pd(sum_rows8<K>(rows, x), vinv);
-    const __m512d b = _mm512_mul_pd(sum_rows8<K>(rows + K, x), vinv);
-    const __m512d v = _mm512_sub_pd(b, _mm512_mul_pd(a, a));
-    // positive_part: v where v > 0, else +0 (a NaN too).
-    const __m512d pv = _mm512_mask_mov_pd(zero, _mm512_cmp_pd_mask(v, zero, _CMP_GT_OQ), v);
-    const __m256 mean = _mm512_maskz_cvtpd_ps(0xFF, a), var = _mm512_maskz_cvtpd_ps(0xFF, pv);
-    const __m256 lo = _mm256_unpacklo_ps(mean, var);  // texels 0 1 | 4 5
-    const __m256 hi = _mm256_unpackhi_ps(mean, var);  // texels 2 3 | 6 7
-    _mm256_storeu_ps(out + 2 * x, _mm256_permute2f128_ps(lo, hi, 0x20));
-    _mm256_storeu_ps(out + 2 * x + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
-  }
-  for (; x < w; ++x) vsm_out_texel<K>(rows, x, inv, out);
-}
-
-// The same in AVX2, 4 texels (one 32-byte store) per step: the AVX2-only machines' fused row
-// (before it, their rows went through vsm_out_k into scratch and interleave_row, two passes).
-template <int K>
-SL_TARGET("avx2") void vsm_out_interleaved_avx2(const double* const* rows, int w,
-                                                double inv, float* out) {
-  const int head = texels_to_line(out, 2, w);
-  int x = 0;
-  for (; x < head; ++x) vsm_out_texel<K>(rows, x, inv, out);
-  const double* r[2 * K];
-  for (int j = 0; j < 2 * K; ++j) r[j] = rows[j];
-  const __m256d vinv = _mm256_set1_pd(inv), zero = _mm256_setzero_pd();
-  for (; x + 4 <= w; x += 4) {
-    __m256d a = _mm256_loadu_pd(r[0] + x), b = _mm256_loadu_pd(r[K] + x);
-    for (int j = 1; j < K; ++j) {
-      a = _mm256_add_pd(a, _mm256_loadu_pd(r[j] + x));
-      b = _mm256_add_pd(b, _mm256_loadu_pd(r[K + j] + x));
-    }
-    a = _mm256_mul_pd(a, vinv);
-    b = _mm256_mul_pd(b, vinv);
-    const __m256d v = _mm256_sub_pd(b, _mm256_mul_pd(a, a));
-    // positive_part: v where v > 0, else +0 (a NaN too).
-    const __m256d pv = _mm256_and_pd(v, _mm256_cmp_pd(v, zero, _CMP_GT_OQ));
-    const __m128 mean = _mm256_cvtpd_ps(a), var = _mm256_cvtpd_ps(pv);
-    // texels 0 1 in the low half, 2 3 in the high one.
-    _mm256_storeu_ps(out + 2 * x,
-                     _mm256_set_m128(_mm_unpackhi_ps(mean, var), _mm_unpacklo_ps(mean, var)));
-  }
-  for (; x < w; ++x) vsm_out_texel<K>(rows, x, inv, out);
-}
-#endif
-
-}  // namespace
-
-namespace {
-
 // Where filtered means and variances go: texel i's at mean[stride·i] and var[stride·i]; stride
 // 1 for two planes, 2 for one interleaved plane (var = mean + 1).
 struct MeanVarOut {
@@ -327,8 +97,8 @@ struct MeanVarOut {
 // its filter 0.3 ms faster and its lookup 0.35 ms slower (the lookup then reads what the caches
 // would have held), so it would only move time between the phases.
 template <class Write>
-void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float* scratch,
-                    const Write& write) {
+void write_mean_var(const MomentRowKernels& kr, const MeanVarOut& o, int w, int y,
+                    const SpanCols& s, float* scratch, const Write& write) {
   const size_t at = (size_t(y) * size_t(w) + size_t(s.x0)) * size_t(o.stride);
   const int n = s.n;
   if (o.stride == 1) {
@@ -337,7 +107,7 @@ void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float*
   }
   write(scratch, scratch + n);
   if (o.stride == 2) {
-    interleave_row(scratch, scratch + n, n, o.mean + at);
+    kr.interleave_row(scratch, scratch + n, n, o.mean + at);
     return;
   }
   float* const row = o.mean + at;
@@ -348,26 +118,20 @@ void write_mean_var(const MeanVarOut& o, int w, int y, const SpanCols& s, float*
 }
 
 // Row y's filtered mean and variance from its window of K rows of each plane's horizontal sums
-// (vsm_out_k's operations): straight into the interleaved plane by vsm_out_interleaved_avx512
-// or _avx2 where the plane interleaves two values and that ISA is in use (isa), else through
+// (vsm_out_k's operations): straight into the interleaved plane by the table's
+// vsm_out_interleaved where the plane interleaves two values and the table has one, else through
 // write_mean_var.
 template <int K>
-void vsm_out_row(const MeanVarOut& o, int w, int y, const SpanCols& s, const double* const* win,
-                 double* scratch, double inv, Isa isa) {
-#if defined(__x86_64__)
-  if (o.stride == 2 && isa != Isa::scalar) {
+void vsm_out_row(const MomentRowKernels& kr, const MeanVarOut& o, int w, int y, const SpanCols& s,
+                 const double* const* win, double* scratch, double inv) {
+  constexpr int slot = moment_width_slot(K);
+  if (o.stride == 2 && kr.vsm_out_interleaved[slot]) {
     float* const row = o.mean + 2 * (size_t(y) * size_t(w) + size_t(s.x0));
-    if (isa == Isa::avx512)
-      vsm_out_interleaved_avx512<K>(win, s.n, inv, row);
-    else
-      vsm_out_interleaved_avx2<K>(win, s.n, inv, row);
+    kr.vsm_out_interleaved[slot](win, s.n, inv, row);
     return;
   }
-#else
-  (void)isa;
-#endif
-  write_mean_var(o, w, y, s, reinterpret_cast<float*>(scratch),
-                 [&](float* m, float* v) { vsm_out_k<K>(win, s.n, inv, m, v); });
+  write_mean_var(kr, o, w, y, s, reinterpret_cast<float*>(scratch),
+                 [&](float* m, float* v) { kr.vsm_out_k[slot](win, s.n, inv, m, v); });
 }
 
 // Filtered mean and centred variance of a two-plane row maker: make_row(y, cols, ext) fills
@@ -378,22 +142,20 @@ void vsm_out_row(const MeanVarOut& o, int w, int y, const SpanCols& s, const dou
 template <class MakeRow>
 void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, const float* src,
                        const MakeRow& make_row, const MeanVarOut& o) {
+  const MomentRowKernels& kr = row_kernels(fixed);
   const size_t ew = size_t(w) + size_t(k) - 1;
   const double inv = 1.0 / double(k * k);
-#if defined(__x86_64__)
-  const Isa isa = exp_path(true);  // vsm_out_interleaved_avx512 / _avx2 for stride 2
-#endif
   if (fixed && with_fixed_width(k, [&](auto kc) {
         constexpr int K = decltype(kc)::value;
         fused_box(
             w, h, k, 2, tiles, src,
             [&](int y, const SpanCols& s, double* const* dst, double* ext) {
               make_row(y, s, ext);
-              hsum_k<K>(ext, s.n, dst[0]);
-              hsum_k<K>(ext + ew, s.n, dst[1]);
+              kr.hsum_k[moment_width_slot(K)](ext, s.n, dst[0]);
+              kr.hsum_k[moment_width_slot(K)](ext + ew, s.n, dst[1]);
             },
             [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-              vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
+              vsm_out_row<K>(kr, o, w, y, s, win, scratch, inv);
             });
       }))
     return;
@@ -401,17 +163,17 @@ void box_mean_variance(int w, int h, int k, bool fixed, const FaceTiles* tiles, 
       w, h, k, 2, tiles, src,
       [&](int y, const SpanCols& s, double* const* dst, double* ext) {
         make_row(y, s, ext);
-        hsum_row(ext, s.n, k, dst[0]);
-        hsum_row(ext + ew, s.n, k, dst[1]);
+        kr.hsum_row_d(ext, s.n, k, dst[0]);
+        kr.hsum_row_d(ext + ew, s.n, k, dst[1]);
       },
       [&](int y, const SpanCols& s, const double* const* win, double* out) {
-        vsum_rows(win, s.n, k, inv, out);
-        vsum_rows(win + k, s.n, k, inv, out + w);
+        kr.vsum_rows_d(win, s.n, k, inv, out);
+        kr.vsum_rows_d(win + k, s.n, k, inv, out + w);
         // out holds the two summed rows (2·w doubles); the floats go after them in the
         // planes' scratch only when interleaving, so use a row of their own.
         float* const tmp = reinterpret_cast<float*>(out + 2 * size_t(w));
-        write_mean_var(o, w, y, s, tmp, [&](float* m, float* v) {
-          mean_variance_row(out, out + w, s.n, m, v);
+        write_mean_var(kr, o, w, y, s, tmp, [&](float* m, float* v) {
+          kr.mean_variance_row(out, out + w, s.n, m, v);
         });
       });
 }
@@ -459,11 +221,12 @@ void centred3_box(int w, int h, const FaceTiles* tiles, const float* src, Isa is
 // The fixed-width box of a float row's two moments: make_row(y, span, in) writes the span's
 // span.in_n input floats at `in` (finite distances for VSM, EVSM's warp), then the row is
 // clamped at its ends and hsum_moments_k forms each value and its square in double inside the
-// horizontal sums; the output rows by vsm_out_row (its fused kernels per `isa`). False, having
-// done nothing, for a width without a fixed kernel.
+// horizontal sums; the output rows by vsm_out_row (the table's fused rows). False, having done
+// nothing, for a width without a fixed kernel.
 template <class MakeRow>
 bool float_moments_fixed(int w, int h, int k, const FaceTiles* tiles, const float* src,
-                         Isa isa, const MeanVarOut& o, const MakeRow& make_row) {
+                         const MomentRowKernels& kr, const MeanVarOut& o,
+                         const MakeRow& make_row) {
   const double inv = 1.0 / double(k * k);
   return with_fixed_width(k, [&](auto kc) {
     constexpr int K = decltype(kc)::value;
@@ -473,10 +236,10 @@ bool float_moments_fixed(int w, int h, int k, const FaceTiles* tiles, const floa
           float* const ext_f = reinterpret_cast<float*>(ext);
           make_row(y, s, ext_f + s.lead);
           extend_span(ext_f, s, k);
-          hsum_moments_k<K>(ext_f, s.n, dst[0], dst[1]);
+          kr.hsum_moments_k[moment_width_slot(K)](ext_f, s.n, dst[0], dst[1]);
         },
         [&](int y, const SpanCols& s, const double* const* win, double* scratch) {
-          vsm_out_row<K>(o, w, y, s, win, scratch, inv, isa);
+          vsm_out_row<K>(kr, o, w, y, s, win, scratch, inv);
         });
   });
 }
@@ -485,19 +248,21 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
                     const FaceTiles* tiles, const MeanVarOut& o) {
   const int r = k / 2;
   const size_t ew = size_t(w) + size_t(k) - 1;
+  const MomentRowKernels& kr = row_kernels(fixed_kernels);
   // k = 3 without the slope term: the centred float window, the oracle with its scalar kernel.
   if (k == 3 && !slope_term) {
-    centred3_box(w, h, tiles, dist, exp_path(fixed_kernels), o,
+    centred3_box(w, h, tiles, dist, kr.isa, o,
                  [&](int y, const SpanCols& s, float* in) {
-                   finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, in);
+                   kr.finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, in);
                  });
     return;
   }
   // Without the slope term, d² is formed inside the horizontal sums from the float row.
   if (fixed_kernels && !slope_term &&
-      float_moments_fixed(w, h, k, tiles, dist, exp_path(true), o,
+      float_moments_fixed(w, h, k, tiles, dist, kr, o,
                           [&](int y, const SpanCols& s, float* in) {
-                            finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, in);
+                            kr.finite_row(dist + size_t(y) * size_t(w) + size_t(s.in0),
+                                          s.in_n, in);
                           }))
     return;
   auto at = [&](int x, int y) {
@@ -508,7 +273,7 @@ void moments_double(const float* dist, int w, int h, int k, bool slope_term, boo
       w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
         if (!slope_term) {
-          moment_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead,
+          kr.moment_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, ext + s.lead,
                      ext + ew + size_t(s.lead));
           extend_span(ext, s, k);
           extend_span(ext + ew, s, k);
@@ -567,33 +332,32 @@ namespace {
 void warped_moments(const float* dist, int w, int h, int k, double c, double sign,
                     bool fixed_kernels, const FaceTiles* tiles, const MeanVarOut& o) {
   const size_t ew = size_t(w) + size_t(k) - 1;
+  const MomentRowKernels& kr = row_kernels(fixed_kernels);
   // k = 3: the centred float window of the float warp, the oracle with the scalar warp and
   // window kernels.
   if (k == 3) {
-    const Isa path = exp_path(fixed_kernels);
-    centred3_box(w, h, tiles, dist, path, o,
+    centred3_box(w, h, tiles, dist, kr.isa, o,
                  [&](int y, const SpanCols& s, float* in) {
-                   warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c,
-                              sign, in);
+                   kr.warp_row_f(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c,
+                                 sign, in);
                  });
     return;
   }
   // Fixed widths: the warp as floats, its moments formed in the horizontal sums (VSM's
   // fixed path); the runtime-k oracle keeps the two double rows.
   if (fixed_kernels) {
-    const Isa path = exp_path(true);
-    if (float_moments_fixed(w, h, k, tiles, dist, path, o,
+    if (float_moments_fixed(w, h, k, tiles, dist, kr, o,
                             [&](int y, const SpanCols& s, float* in) {
-                              warp_row_f(path, dist + size_t(y) * size_t(w) + size_t(s.in0),
-                                         s.in_n, c, sign, in);
+                              kr.warp_row_f(dist + size_t(y) * size_t(w) + size_t(s.in0),
+                                            s.in_n, c, sign, in);
                             }))
       return;
   }
   box_mean_variance(
       w, h, k, fixed_kernels, tiles, dist,
       [&](int y, const SpanCols& s, double* ext) {
-        warped_row_scalar(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
-                          ext + s.lead, ext + ew + size_t(s.lead));
+        kr.warped_row(dist + size_t(y) * size_t(w) + size_t(s.in0), s.in_n, c, sign,
+                      ext + s.lead, ext + ew + size_t(s.lead));
         extend_span(ext, s, k);
         extend_span(ext + ew, s, k);
       },

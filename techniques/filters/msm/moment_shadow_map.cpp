@@ -6,19 +6,17 @@
 // (techniques/filters/msm/moment_bound.h: Hamburger or Hausdorff). docs/design.md §6, MSM.
 #include <algorithm>
 #include <cmath>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include <fmt/format.h>
 
 #include "core/isa.h"
 #include "core/parallel.h"
-#include "core/simd_target.h"
 #include "techniques/filters/moments_common/chebyshev.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 #include "techniques/filters/msm/moment_bound.h"
+#include "techniques/filters/moments_common/moment_rows.h"
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
@@ -47,26 +45,6 @@ const std::vector<MapKey>& keys() {
   return k;
 }
 
-// Texels [0, n) of the interleaved moments (texel i's at m[4i + 0..3]) through the 16-bit
-// store: each texel's moments encoded
-// (msm_encode16), clamped to [0, 1] and rounded to the nearest multiple of 1/65535 (a UNORM16
-// channel, ties up), kept as the float of that value. Compiled for AVX-512, AVX2 and baseline
-// (floor is one instruction from SSE4.1 on; exact, so every clone gives the same bits).
-__attribute__((target_clones("avx512f", "avx2", "default"))) void quantize16(size_t n,
-                                                                             float* __restrict mv) {
-  for (size_t i = 0; i < n; ++i) {
-    const double m[4] = {mv[4 * i], mv[4 * i + 1], mv[4 * i + 2], mv[4 * i + 3]};
-    double q[4];
-    msm_encode16(m, q);
-    float r[4];
-    for (int c = 0; c < 4; ++c) {
-      const double v = q[c] < 0.0 ? 0.0 : (q[c] > 1.0 ? 1.0 : q[c]);
-      r[c] = float(std::floor(v * 65535.0 + 0.5) / 65535.0);
-    }
-    for (int c = 0; c < 4; ++c) mv[4 * i + c] = r[c];
-  }
-}
-
 // The four moments of a texel are stored interleaved in map.a (texel i's at a[4i + 0..3]): a
 // bilinear lookup's row of taps is one 32-byte load and one cache line, where four planes took
 // four of each (docs/performance_history.md).
@@ -78,7 +56,9 @@ void filter(const MapParams& p, LightMap& map) {
     filter_power_moments_interleaved(map.dist.distance[f].data(), face.width, face.height,
                                      p.blur, map.a[f], tiles);
     if (!p.msm.quantize16) continue;
-    // The filtered texels' moments through the 16-bit store, band by band.
+    // The filtered texels' moments through the 16-bit store (msm_encode16, clamped to [0, 1],
+    // rounded to the nearest multiple of 1/65535: a UNORM16 channel), band by band.
+    const Quantize16Fn quantize16 = moment_row_kernels(process_isa()).quantize16;
     float* const mv = map.a[f].data();
     const int bands = (face.height + kTexelTile - 1) / kTexelTile;
     parallel_for_chunks(size_t(bands), 1, [&](size_t b0, size_t b1) {
@@ -95,10 +75,7 @@ void filter(const MapParams& p, LightMap& map) {
   }
 }
 
-struct MsmConsts {
-  double alpha;
-  bool hausdorff, quantize16;
-};
+using MsmConsts = MsmLookupConsts;  // techniques/lookup/lookup_batches.h
 
 // Visibility from the 4 bilinear taps of the 4 planes (P[plane][tap]).
 float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, float depth) {
@@ -116,84 +93,9 @@ float msm_value(const MsmConsts& k, const float (*P)[4], float fx, float fy, flo
   return float(1.0 - msm_intensity(m, double(depth), k.alpha, k.hausdorff));
 }
 
-#if defined(__x86_64__)
-#define SL_AVX2 SL_TARGET("avx2")
-// msm_value for the 8 lanes of each of N batches, from their bilinearly mixed moments
-// (bilinear8_mix4_avx2: msm_value's sum, bit for bit), each batch in two halves of 4 doubles:
-// msm_value's remaining operations in its order, the 2N halves' reconstructions side by side
-// (msm_intensity4n<2N>: N > 1 overlaps the batches' chains of divisions, as msm_batch_avx512
-// does).
-template <int N>
-SL_AVX2 void msm_batch_avx2(const MsmConsts& k, const double (*const* mixed)[8],
-                            const float* const* depth, float* const* out) {
-  const __m256d one = _mm256_set1_pd(1.0);
-  __m256d m[2 * N][4], z[2 * N], g[2 * N];
-  for (int hh = 0; hh < 2 * N; ++hh) {
-    const int h = hh / 2, half = hh % 2;
-    __m256d* mh = m[hh];
-    for (int j = 0; j < 4; ++j) mh[j] = _mm256_load_pd(mixed[h][j] + 4 * half);
-    if (k.quantize16) {
-      // msm_decode16's operations, lane by lane.
-      const __m256d q[4] = {_mm256_sub_pd(mh[0], _mm256_set1_pd(kMsmOffset)), mh[1], mh[2],
-                            mh[3]};
-      for (int j = 0; j < 4; ++j) {
-        __m256d s = _mm256_mul_pd(q[0], _mm256_set1_pd(kMsmInverse[0][j]));
-        for (int i = 1; i < 4; ++i)
-          s = _mm256_add_pd(s, _mm256_mul_pd(q[i], _mm256_set1_pd(kMsmInverse[i][j])));
-        mh[j] = s;
-      }
-    }
-    z[hh] = _mm256_cvtps_pd(_mm_loadu_ps(depth[h] + 4 * half));
-  }
-  msm_intensity4n<2 * N>(m, z, k.alpha, k.hausdorff, g);
-  for (int hh = 0; hh < 2 * N; ++hh)
-    _mm_storeu_ps(out[hh / 2] + 4 * (hh % 2), _mm256_cvtpd_ps(_mm256_sub_pd(one, g[hh])));
-}
-#undef SL_AVX2
-
-// 8 floats widened to doubles: the zero-masked conversion with every lane on (GCC 12's unmasked
-// one passes an undefined source that -Wmaybe-uninitialized reports; the same instruction).
-SL_TARGET("avx512f") inline __m512d widen8(const float* p) {
-  return _mm512_maskz_cvtps_pd(0xFF, _mm256_loadu_ps(p));
-}
-
-// msm_batch_avx2's operations on N batches of 8 lanes at once (msm_intensity8n: N > 1 overlaps
-// the batches' chains of divisions).
-template <int N>
-SL_TARGET("avx512f,avx512dq") void msm_batch_avx512(
-    const MsmConsts& k, const float (*const* v)[4][8], const float* const* fx,
-    const float* const* fy, const float* const* depth, float* const* out) {
-  const __m512d one = _mm512_set1_pd(1.0);
-  __m512d m[N][4], z[N], g[N];
-  for (int h = 0; h < N; ++h) {
-    __m512d w[4];
-    bilinear_weights8(widen8(fx[h]), widen8(fy[h]), w);
-    for (int j = 0; j < 4; ++j) {
-      m[h][j] = _mm512_setzero_pd();
-      for (int i = 0; i < 4; ++i)
-        m[h][j] = _mm512_add_pd(m[h][j], _mm512_mul_pd(w[i], widen8(v[h][j][i])));
-    }
-    if (k.quantize16) {
-      const __m512d q[4] = {_mm512_sub_pd(m[h][0], _mm512_set1_pd(kMsmOffset)), m[h][1], m[h][2],
-                            m[h][3]};
-      for (int j = 0; j < 4; ++j) {
-        __m512d s = _mm512_mul_pd(q[0], _mm512_set1_pd(kMsmInverse[0][j]));
-        for (int i = 1; i < 4; ++i)
-          s = _mm512_add_pd(s, _mm512_mul_pd(q[i], _mm512_set1_pd(kMsmInverse[i][j])));
-        m[h][j] = s;
-      }
-    }
-    z[h] = widen8(depth[h]);
-  }
-  msm_intensity8n<N>(m, z, k.alpha, k.hausdorff, g);
-  for (int h = 0; h < N; ++h)
-    _mm256_storeu_ps(out[h], _mm512_maskz_cvtpd_ps(0xFF, _mm512_sub_pd(one, g[h])));
-}
-#endif
-
 // 8 lanes at once: msm_value's arithmetic in double. With AVX-512, the interleaved moments'
 // bilinear taps loaded by the AVX2 kernel, then the mix and the reconstruction in 8 lanes;
-// with AVX2, the mixed moments from bilinear8_mix4_avx2 (lane by lane, no tap transpose), then
+// with AVX2, the mixed moments from bilinear8_mix4 (lane by lane, no tap transpose), then
 // the reconstruction in halves of 4. Used only where the AVX2 kernels exist. The lookup
 // loop hands it kGroups batches at a time (map_lookup.h): the reconstruction is a serial chain
 // of divisions and a square root per batch (7 divisions then, 2 now), and with AVX-512 4
@@ -208,32 +110,31 @@ struct MsmBatch {
   Mix8x4Fn mix4;              // the mixed moments, for the AVX2 form
   PlaneGather moments;  // a: moments 1 to 4 per texel
   Prefetch8Fn prefetch8;
-  bool avx512;  // the reconstruction in 8 lanes (process_isa() is avx512) or in two halves of 4
-  static constexpr int kAvx2Groups = 2;  // batches per msm_batch_avx2 call in groups()
+  const LookupBatchKernels* batches;  // the reconstruction's kernels (techniques/lookup/lookup_batches.h)
+  // The reconstruction in 8 lanes (the AVX-512 table's msm_taps) or in two halves of 4.
+  bool avx512() const { return batches->msm_taps1 != nullptr; }
+  static constexpr int kAvx2Groups = 2;  // batches per msm_mixed2 call in groups()
   bool grouped() const { return true; }
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
     if (prefetch8) prefetch8(c, r, moments, 4);
   }
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t, float* out) const {
-#if defined(__x86_64__)
     const float* dp = r.depth;
-    if (avx512) {
+    if (avx512()) {
       alignas(32) float v[4][4][8], fx[8], fy[8];
       bilinear8x4(c, r, moments, v, fx, fy);
       const float(*vp)[4][8] = v;
       const float *fxp = fx, *fyp = fy;
-      msm_batch_avx512<1>(k, &vp, &fxp, &fyp, &dp, &out);
+      batches->msm_taps1(k, &vp, &fxp, &fyp, &dp, &out);
     } else {
       alignas(32) double mixed[4][8];
       mix4(c, r, moments, mixed);
       const double(*mp)[8] = mixed;
-      msm_batch_avx2<1>(k, &mp, &dp, &out);
+      batches->msm_mixed1(k, &mp, &dp, &out);
     }
-#endif
   }
   // kGroups batches at once: in 8 lanes with AVX-512, else kAvx2Groups at a time in halves of 4.
   void groups(const MapLookupConsts& c, const Receivers8* r, float (*out)[8]) const {
-#if defined(__x86_64__)
     constexpr int G = kGroups;
     const float* dp[G];
     float* op[G];
@@ -241,7 +142,7 @@ struct MsmBatch {
       dp[h] = r[h].depth;
       op[h] = out[h];
     }
-    if (avx512) {
+    if (avx512()) {
       alignas(32) float v[G][4][4][8], fx[G][8], fy[G][8];
       const float(*vp[G])[4][8];
       const float *fxp[G], *fyp[G];
@@ -251,7 +152,7 @@ struct MsmBatch {
         fxp[h] = fx[h];
         fyp[h] = fy[h];
       }
-      msm_batch_avx512<G>(k, vp, fxp, fyp, dp, op);
+      batches->msm_taps4(k, vp, fxp, fyp, dp, op);
       return;
     }
     alignas(32) double mixed[G][4][8];
@@ -266,9 +167,8 @@ struct MsmBatch {
       bool any = false;
       for (int j = h; j < h + kAvx2Groups; ++j)
         for (int lane = 0; lane < 8; ++lane) any |= r[j].active[lane] != 0;
-      if (any) msm_batch_avx2<kAvx2Groups>(k, mp + h, dp + h, op + h);
+      if (any) batches->msm_mixed2(k, mp + h, dp + h, op + h);
     }
-#endif
   }
 };
 
@@ -289,9 +189,9 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   };
   const LookupKernels& kernels = lookup_kernels(process_isa());
   MsmBatch batch{k, kernels.bilinear8_interleaved4, kernels.bilinear8_mix4, plane_gather(map.a),
-                 kernels.prefetch8, process_isa() == Isa::avx512};
-  const bool gathers =
-      batch.bilinear8x4 != nullptr && batch.mix4 != nullptr && batch.moments.ok;
+                 kernels.prefetch8, &lookup_batch_kernels(process_isa())};
+  const bool gathers = batch.bilinear8x4 != nullptr && batch.mix4 != nullptr &&
+                       batch.batches->msm_mixed1 != nullptr && batch.moments.ok;
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else

@@ -6,19 +6,15 @@
 // random number (core/rng.h), never the thread. docs/techniques/pcss.md gives the geometry.
 #include <algorithm>
 #include <cmath>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "core/simd_target.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 #include "techniques/filters/pcss/penumbra_model.h"
 #include "techniques/lookup/poisson_disk.h"
-#include "techniques/lookup/tap_avx2.h"
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
@@ -192,26 +188,15 @@ float pcss_visibility(const PcssContext& c, const Receiver& r) {
   return lit / float(c.taps.points.size());
 }
 
-#if defined(__x86_64__)
-#define SL_AVX2 SL_TARGET("avx2")
-// Lanes whose tap (x, y) lies outside [1, w − 1] × [1, h − 1], where tap_face would look it up in
-// another face (those lanes take the scalar stages).
-SL_AVX2 inline __m256 pcss_outside(__m256 x, __m256 y, __m256 wm1, __m256 hm1) {
-  const __m256 one = _mm256_set1_ps(1.0f);
-  const __m256 in = _mm256_and_ps(
-      _mm256_and_ps(_mm256_cmp_ps(x, one, _CMP_GE_OQ), _mm256_cmp_ps(y, one, _CMP_GE_OQ)),
-      _mm256_and_ps(_mm256_cmp_ps(x, wm1, _CMP_LE_OQ), _mm256_cmp_ps(y, hm1, _CMP_LE_OQ)));
-  return _mm256_xor_ps(in, _mm256_castsi256_ps(_mm256_set1_epi32(-1)));
-}
-
 // The stages for the 8 lanes of a batch whose taps stay in their face's image, in the scalar
-// code's operations and order: `lanes` are the per-lane quantities, gx/gy the plane gradients.
-// Returns the lanes left to the scalar code (a tap outside the image, or stage 4 skipped:
-// no blocker) in `rest`, and the others' visibility in out.
-SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, const Receivers8& r,
-                             const PcssLane* lanes, const float* gxv, const float* gyv,
-                             const int* active, float* out, bool* rest) {
-  alignas(32) float rs[8], cs_s[8], sn_s[8], cs[8], sn[8];
+// code's operations and order: the blocker search and the PCF by the lookup batch table
+// (techniques/lookup/lookup_batches.h), the radius per lane here. `lanes` are the per-lane quantities,
+// gx/gy the plane gradients. Returns the lanes left to the scalar code (a tap outside the image,
+// or stage 4 skipped: no blocker) in `rest`, and the others' visibility in out.
+void pcss_batch(const LookupBatchKernels& kb, const MapLookupConsts& mc, const PcssContext& c,
+                const Receivers8& r, const PcssLane* lanes, const float* gxv, const float* gyv,
+                const int32_t* active, float* out, bool* rest) {
+  float rs[8], cs_s[8], sn_s[8], cs[8], sn[8];
   for (int k = 0; k < 8; ++k) {
     rs[k] = lanes[k].search_radius;
     cs_s[k] = lanes[k].rot_s.x;
@@ -219,55 +204,17 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
     cs[k] = lanes[k].rot.x;
     sn[k] = lanes[k].rot.y;
   }
-  const __m256i zero_i = _mm256_setzero_si256();
-  const __m256i act = _mm256_setr_epi32(active[0], active[1], active[2], active[3], active[4],
-                                        active[5], active[6], active[7]);
-  __m256 live = _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(act, zero_i),
-                                                     _mm256_set1_epi32(-1)));
-  const __m256i face = _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)),
-                                        _mm256_castps_si256(live));
-  const __m256i width = face_lanes(mc.width, face), height = face_lanes(mc.height, face);
-  const __m256i offset = face_lanes(mc.offset, face);
-  const __m256 wm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(width), _mm256_set1_ps(1.0f));
-  const __m256 hm1 = _mm256_sub_ps(_mm256_cvtepi32_ps(height), _mm256_set1_ps(1.0f));
-  const __m256 sx = _mm256_load_ps(r.sx), sy = _mm256_load_ps(r.sy);
-  const __m256 depth = _mm256_load_ps(r.depth);
-  const __m256 gx = _mm256_loadu_ps(gxv), gy = _mm256_loadu_ps(gyv);
   // 1. Blocker search.
-  __m256 outside = _mm256_setzero_ps();
-  __m256d sum_lo = _mm256_setzero_pd(), sum_hi = _mm256_setzero_pd();
-  __m256i count = zero_i;
-  {
-    const __m256 rad = _mm256_load_ps(rs), c0 = _mm256_load_ps(cs_s), s0 = _mm256_load_ps(sn_s);
-    for (const vec2& q : c.search.points) {
-      __m256 tx, ty;
-      rotated_tap(sx, sy, rad, c0, s0, q, tx, ty);
-      outside = _mm256_or_ps(outside, pcss_outside(tx, ty, wm1, hm1));
-      const __m256 ok = _mm256_andnot_ps(outside, live);
-      // Nearest texel: inside the image st >= 1, so truncation is clamp_texel's floor.
-      const __m256i ix = _mm256_cvttps_epi32(tx), iy = _mm256_cvttps_epi32(ty);
-      const __m256 z = stored_distance(mc, offset, width, ix, iy, ok);
-      const __m256 thr = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(tx, sx)),
-                                                            _mm256_mul_ps(gy, _mm256_sub_ps(ty, sy))));
-      const __m256 blocker = _mm256_and_ps(_mm256_cmp_ps(z, thr, _CMP_LT_OQ), ok);
-      const __m256 zb = _mm256_and_ps(z, blocker);  // +0 where not a blocker
-      sum_lo = _mm256_add_pd(sum_lo, _mm256_cvtps_pd(_mm256_castps256_ps128(zb)));
-      sum_hi = _mm256_add_pd(sum_hi, _mm256_cvtps_pd(_mm256_extractf128_ps(zb, 1)));
-      count = _mm256_sub_epi32(count, _mm256_castps_si256(blocker));
-    }
-  }
-  alignas(32) double sums[8];
-  alignas(32) int32_t counts[8];
-  alignas(32) float out_mask[8];
-  _mm256_store_pd(sums, sum_lo);
-  _mm256_store_pd(sums + 4, sum_hi);
-  _mm256_store_si256(reinterpret_cast<__m256i*>(counts), count);
-  _mm256_store_ps(out_mask, outside);
+  double sums[8];
+  int32_t counts[8];
+  float outside[8];
+  kb.pcss_search(mc, r, rs, cs_s, sn_s, gxv, gyv, active, c.search.points.data(),
+                 int(c.search.points.size()), sums, counts, outside);
   // 2–3 per lane; lanes with a tap outside, or none active, leave the batch.
-  alignas(32) float radius[8];
+  float radius[8];
   for (int k = 0; k < 8; ++k) {
     radius[k] = 0.0f;
-    rest[k] = active[k] && out_mask[k] != 0.0f;
+    rest[k] = active[k] && outside[k] != 0.0f;
     if (!active[k] || rest[k]) continue;
     if (counts[k] == 0) {
       out[k] = 1.0f;
@@ -275,61 +222,30 @@ SL_AVX2 void pcss_batch_avx2(const MapLookupConsts& mc, const PcssContext& c, co
     }
     radius[k] = pcss_radius(c, lanes[k], sums[k], counts[k]);
   }
-  alignas(32) int32_t pcf_lanes[8];  // lanes that go on to stage 4 here
-  for (int k = 0; k < 8; ++k) pcf_lanes[k] = active[k] && !rest[k] && counts[k] > 0 ? -1 : 0;
-  live = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(pcf_lanes)));
-  if (_mm256_movemask_ps(live) == 0) return;
-  // 4. Rotated Poisson PCF over each lane's radius.
-  const __m256 rad = _mm256_load_ps(radius), c1 = _mm256_load_ps(cs), s1 = _mm256_load_ps(sn);
-  const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
-  const __m256i one_i = _mm256_set1_epi32(1);
-  __m256 outside4 = _mm256_setzero_ps();
-  __m256 lit = _mm256_setzero_ps();
-  for (const vec2& q : c.taps.points) {
-    __m256 tx, ty;
-    rotated_tap(sx, sy, rad, c1, s1, q, tx, ty);
-    outside4 = _mm256_or_ps(outside4, pcss_outside(tx, ty, wm1, hm1));
-    const __m256 ok = _mm256_andnot_ps(outside4, live);
-    // bilinear_taps inside the image: floor is truncation, no clamping.
-    const __m256 bx = _mm256_sub_ps(tx, half), by = _mm256_sub_ps(ty, half);
-    const __m256i x0 = _mm256_cvttps_epi32(bx), y0 = _mm256_cvttps_epi32(by);
-    const __m256 fx = _mm256_sub_ps(bx, _mm256_cvtepi32_ps(x0));
-    const __m256 fy = _mm256_sub_ps(by, _mm256_cvtepi32_ps(y0));
-    const __m256i x1 = _mm256_add_epi32(x0, one_i), y1 = _mm256_add_epi32(y0, one_i);
-    __m256 a[4];
-    const __m256i xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
-    for (int i = 0; i < 4; ++i) {
-      const __m256 d = stored_distance(mc, offset, width, xs[i], ys[i], ok);
-      const __m256 cx = _mm256_add_ps(_mm256_cvtepi32_ps(xs[i]), half);
-      const __m256 cy = _mm256_add_ps(_mm256_cvtepi32_ps(ys[i]), half);
-      const __m256 dt = _mm256_add_ps(depth, _mm256_add_ps(_mm256_mul_ps(gx, _mm256_sub_ps(cx, sx)),
-                                                           _mm256_mul_ps(gy, _mm256_sub_ps(cy, sy))));
-      a[i] = _mm256_and_ps(_mm256_cmp_ps(dt, d, _CMP_LE_OQ), one);
-    }
-    const __m256 ofx = _mm256_sub_ps(one, fx), ofy = _mm256_sub_ps(one, fy);
-    const __m256 top = _mm256_add_ps(_mm256_mul_ps(ofx, a[0]), _mm256_mul_ps(fx, a[1]));
-    const __m256 bot = _mm256_add_ps(_mm256_mul_ps(ofx, a[2]), _mm256_mul_ps(fx, a[3]));
-    lit = _mm256_add_ps(lit, _mm256_add_ps(_mm256_mul_ps(ofy, top), _mm256_mul_ps(fy, bot)));
-  }
-  alignas(32) float res[8], out4[8], live_f[8];
-  _mm256_store_ps(res, _mm256_div_ps(lit, _mm256_set1_ps(float(c.taps.points.size()))));
-  _mm256_store_ps(out4, outside4);
-  _mm256_store_ps(live_f, live);
+  int32_t pcf_lanes[8];  // lanes that go on to stage 4 here
+  bool any = false;
   for (int k = 0; k < 8; ++k) {
-    if (live_f[k] == 0.0f) continue;
-    if (out4[k] != 0.0f)
+    pcf_lanes[k] = active[k] && !rest[k] && counts[k] > 0 ? -1 : 0;
+    any |= pcf_lanes[k] != 0;
+  }
+  if (!any) return;
+  // 4. Rotated Poisson PCF over each lane's radius.
+  float vis[8], outside4[8];
+  kb.pcss_pcf(mc, r, radius, cs, sn, gxv, gyv, active, pcf_lanes, c.taps.points.data(),
+              int(c.taps.points.size()), vis, outside4);
+  for (int k = 0; k < 8; ++k) {
+    if (pcf_lanes[k] == 0) continue;
+    if (outside4[k] != 0.0f)
       rest[k] = true;
     else
-      out[k] = res[k];
+      out[k] = vis[k];
   }
 }
-#undef SL_AVX2
-#endif
 
 // 8 lanes at once: each lane's receiver-plane gradient as make_receiver computes it (from the
 // GBuffer's position and geometric normal; the AVX2 receivers carry none), its per-lane
-// quantities (pcss_lane), then pcss_batch_avx2; lanes with a tap outside their face's image
-// take pcss_visibility whole.
+// quantities (pcss_lane), then pcss_batch; lanes with a tap outside their face's image take
+// pcss_visibility whole.
 struct PcssBatch {
   static constexpr bool kEnabled = true;
   void prefetch(const MapLookupConsts&, const Receivers8&) const {}  // taps spread over a disk
@@ -338,11 +254,12 @@ struct PcssBatch {
   const Scene* scene;
   const GBuffer* g;
   bool rpdb;
+  const LookupBatchKernels* kb;
   void operator()(const MapLookupConsts& mc, const Receivers8& r, size_t first, float* out) const {
     Receiver rc[8];
     PcssLane lanes[8];
     float gxv[8], gyv[8];
-    int active[8];
+    int32_t active[8];
     const float inv_far = 1.0f / scene->light.far;
     for (int k = 0; k < 8; ++k) {
       active[k] = r.active[k] != 0;
@@ -365,12 +282,10 @@ struct PcssBatch {
       lanes[k] = pcss_lane(*ctx, rc[k]);
     }
     bool rest[8] = {};
-#if defined(__x86_64__)
     if (mc.gather_ok)
-      pcss_batch_avx2(mc, *ctx, r, lanes, gxv, gyv, active, out, rest);
+      pcss_batch(*kb, mc, *ctx, r, lanes, gxv, gyv, active, out, rest);
     else
       for (int k = 0; k < 8; ++k) rest[k] = active[k];
-#endif
     for (int k = 0; k < 8; ++k)
       if (rest[k]) out[k] = pcss_visibility(*ctx, rc[k]);
   }
@@ -388,8 +303,10 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
                       p.pcss.model};
   auto visibility = [&](const Receiver& r) { return pcss_visibility(c, r); };
   // The model estimate runs in the scalar stages only (the AVX2 batch forms the classic one).
-  if (lookup_kernels(process_isa()).receivers8 && !p.pcss.model)
-    lookup_pixels(scene, g, p, map, mask, texels, visibility, PcssBatch{&c, &scene, &g, p.rpdb});
+  const LookupBatchKernels& kb = lookup_batch_kernels(process_isa());
+  if (lookup_kernels(process_isa()).receivers8 && kb.pcss_search && !p.pcss.model)
+    lookup_pixels(scene, g, p, map, mask, texels, visibility,
+                  PcssBatch{&c, &scene, &g, p.rpdb, &kb});
   else
     lookup_pixels(scene, g, p, map, mask, texels, visibility);
 }

@@ -3,16 +3,12 @@
 // rotated Poisson-disk taps (pcf_kind=poisson), with the seams of techniques/pipeline/map_params.h
 // (cross-face taps or a guard band).
 #include <algorithm>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include "core/error.h"
-#include "core/simd_target.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 #include "techniques/lookup/poisson_disk.h"
-#include "techniques/lookup/tap_avx2.h"
 
 namespace shadowlab {
 // The filter's own namespace: the unity build compiles several filters in one translation
@@ -90,72 +86,16 @@ float poisson_visibility(const LightFace& f, const float* dist, const Receiver& 
   return lit / float(disk.points.size());
 }
 
-#if defined(__x86_64__)
-#define SL_AVX2 SL_TARGET("avx2")
-// poisson_visibility for the 8 lanes of a batch (no rpdb: the batch path has no plane gradient),
-// its float operations in its order: the tap's coordinates, bilinear_taps (floor_int, clamp to
-// the face), the four compares as gathers from the stored distances, the weighted sum, the
-// mean. cosv/sinv: each lane's rotation (poisson_rotation of its pixel).
-SL_AVX2 inline __m256i clamp_to(__m256i v, __m256i hi) {
-  return _mm256_min_epi32(_mm256_max_epi32(v, _mm256_setzero_si256()), hi);
-}
-// 1 where depth <= the stored distance of texel (x, y) of the lane's face, else 0.
-SL_AVX2 inline __m256 lit_at(const MapLookupConsts& c, __m256i offset, __m256i width,
-                             __m256 gather_mask, __m256 depth, __m256i x, __m256i y) {
-  const __m256 d = stored_distance(c, offset, width, x, y, gather_mask);
-  return _mm256_and_ps(_mm256_cmp_ps(depth, d, _CMP_LE_OQ), _mm256_set1_ps(1.0f));
-}
-
-SL_AVX2 void poisson_batch_avx2(const MapLookupConsts& c, const Receivers8& r, const float* cosv,
-                                const float* sinv, const PoissonDisk& disk, float radius,
-                                float* out) {
-  const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
-  const __m256i zero_i = _mm256_setzero_si256(), one_i = _mm256_set1_epi32(1);
-  const __m256 sx = _mm256_load_ps(r.sx), sy = _mm256_load_ps(r.sy);
-  const __m256 depth = _mm256_load_ps(r.depth);
-  const __m256i active = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.active));
-  const __m256 gather_mask = _mm256_castsi256_ps(  // active lanes are all ones, others 0
-      _mm256_xor_si256(_mm256_cmpeq_epi32(active, zero_i), _mm256_set1_epi32(-1)));
-  // Inactive lanes read face 0's first texel (masked gathers skip them anyway).
-  const __m256i face = _mm256_and_si256(
-      _mm256_load_si256(reinterpret_cast<const __m256i*>(r.face)), _mm256_castps_si256(gather_mask));
-  const __m256i width = face_lanes(c.width, face), height = face_lanes(c.height, face);
-  const __m256i offset = face_lanes(c.offset, face);
-  const __m256i wmax = _mm256_sub_epi32(width, one_i), hmax = _mm256_sub_epi32(height, one_i);
-  const __m256 cs = _mm256_loadu_ps(cosv), sn = _mm256_loadu_ps(sinv);
-  const __m256 rad = _mm256_set1_ps(radius);
-  __m256 lit = _mm256_setzero_ps();
-  for (const vec2& q : disk.points) {
-    __m256 tx, ty;
-    rotated_tap(sx, sy, rad, cs, sn, q, tx, ty);
-    const __m256 gx = _mm256_sub_ps(tx, half), gy = _mm256_sub_ps(ty, half);
-    const __m256i ix = floor_lanes(gx), iy = floor_lanes(gy);
-    const __m256 fx = _mm256_sub_ps(gx, _mm256_cvtepi32_ps(ix));
-    const __m256 fy = _mm256_sub_ps(gy, _mm256_cvtepi32_ps(iy));
-    const __m256i x0 = clamp_to(ix, wmax), x1 = clamp_to(_mm256_add_epi32(ix, one_i), wmax);
-    const __m256i y0 = clamp_to(iy, hmax), y1 = clamp_to(_mm256_add_epi32(iy, one_i), hmax);
-    const __m256 ofx = _mm256_sub_ps(one, fx), ofy = _mm256_sub_ps(one, fy);
-    const __m256 a00 = lit_at(c, offset, width, gather_mask, depth, x0, y0);
-    const __m256 a10 = lit_at(c, offset, width, gather_mask, depth, x1, y0);
-    const __m256 a01 = lit_at(c, offset, width, gather_mask, depth, x0, y1);
-    const __m256 a11 = lit_at(c, offset, width, gather_mask, depth, x1, y1);
-    const __m256 top = _mm256_add_ps(_mm256_mul_ps(ofx, a00), _mm256_mul_ps(fx, a10));
-    const __m256 bot = _mm256_add_ps(_mm256_mul_ps(ofx, a01), _mm256_mul_ps(fx, a11));
-    lit = _mm256_add_ps(lit, _mm256_add_ps(_mm256_mul_ps(ofy, top), _mm256_mul_ps(fy, bot)));
-  }
-  _mm256_storeu_ps(out, _mm256_div_ps(lit, _mm256_set1_ps(float(disk.points.size()))));
-}
-#undef SL_AVX2
-#endif
-
-// 8 lanes of rotated Poisson PCF at once (poisson_batch_avx2), with each lane's rotation from
-// its pixel. Used only where the AVX2 kernels and one-base gathers exist.
+// 8 lanes of rotated Poisson PCF at once (the lookup batch table's poisson_batch: the operations
+// of poisson_visibility without rpdb, in its order), with each lane's rotation from its pixel.
+// Used only where the AVX2 kernels and one-base gathers exist.
 struct PoissonBatch {
   static constexpr bool kEnabled = true;
   void prefetch(const MapLookupConsts&, const Receivers8&) const {}  // taps spread over a disk
   const PoissonDisk* disk;
   float radius;
   const LightMap* map;
+  PoissonBatchFn kernel;
   void operator()(const MapLookupConsts& c, const Receivers8& r, size_t first, float* out) const {
     if (!c.gather_ok) {  // faces too far apart for one gather base: the scalar taps, lane by lane
       for (int k = 0; k < 8; ++k) {
@@ -173,9 +113,7 @@ struct PoissonBatch {
       cosv[k] = rot.x;
       sinv[k] = rot.y;
     }
-#if defined(__x86_64__)
-    poisson_batch_avx2(c, r, cosv, sinv, *disk, radius, out);
-#endif
+    kernel(c, r, cosv, sinv, disk->points.data(), int(disk->points.size()), radius, out);
   }
 };
 
@@ -191,9 +129,12 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
       return poisson_visibility(L.faces[size_t(r.face)], map.dist.distance[size_t(r.face)].data(),
                                 r, disk, radius);
     };
-    // The batch needs AVX2 (the scalar table's receivers8 is null) and no plane gradient.
-    if (lookup_kernels(process_isa()).receivers8 && !p.rpdb)
-      lookup_pixels(scene, g, p, map, mask, texels, visibility, PoissonBatch{&disk, radius, &map});
+    // The batch needs AVX2 (the scalar tables' receivers8 and poisson_batch are null) and no
+    // plane gradient.
+    const PoissonBatchFn kernel = lookup_batch_kernels(process_isa()).poisson_batch;
+    if (lookup_kernels(process_isa()).receivers8 && kernel && !p.rpdb)
+      lookup_pixels(scene, g, p, map, mask, texels, visibility,
+                    PoissonBatch{&disk, radius, &map, kernel});
     else
       lookup_pixels(scene, g, p, map, mask, texels, visibility);
     return;

@@ -5,13 +5,10 @@
 #include <vector>
 
 #include <fmt/format.h>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include "core/error.h"
-#include "core/simd_target.h"
 #include "techniques/filters/moments_common/chebyshev.h"
+#include "techniques/lookup/lookup_batches.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 
@@ -76,10 +73,7 @@ bool by_tiles(const MapParams& p) { return !p.vsm.fp32 && !(p.vsm.maxdepth_eps >
 
 // Visibility from the 4 bilinear taps' values of the planes: A (mean, or m1 in fp32 mode),
 // B (variance, or m2), M (max depth; read only with maxdepth_eps > 0), weights from fx, fy.
-struct VsmConsts {
-  double min_var, eps, bleed;
-  bool maxdepth, fp32;
-};
+using VsmConsts = VsmLookupConsts;  // techniques/lookup/lookup_batches.h
 inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const float* M, float fx,
                        float fy, float depth) {
   double w[4];
@@ -104,67 +98,6 @@ inline float vsm_value(const VsmConsts& k, const float* A, const float* B, const
   return chebyshev(t, mean, var, k.min_var, k.bleed);
 }
 
-#if defined(__x86_64__)
-// vsm_value (centred moments, not fp32) for 4 lanes in double: its operations in its order
-// (std::max(a, b) is a < b ? b : a, a blend on that compare; std::clamp likewise), so the lanes
-// get vsm_value's bits.
-SL_TARGET("avx2") __m256d vsm_value4(const VsmConsts& k, const __m256d* A,
-                                                  const __m256d* B, const __m256* M4,
-                                                  __m256d fx, __m256d fy, __m256d t,
-                                                  __m256d active, int half) {
-  const __m256d zero = _mm256_setzero_pd();
-  __m256d w[4];
-  bilinear_weights4(fx, fy, w);
-  // When every active lane has t <= μ, chebyshev4 gives 1 on each of them: skip the variance
-  // and the division (most batches of a scene are lit). A NaN lane fails t <= μ and takes the
-  // full path, as do batches with any shadowed lane; inactive lanes' results are unused.
-  const __m256d mean = mixture_mean4(w, A);
-  __m256d result;
-  if (_mm256_movemask_pd(_mm256_or_pd(_mm256_cmp_pd(t, mean, _CMP_LE_OQ),
-                                      _mm256_xor_pd(active, _mm256_castsi256_pd(
-                                                                _mm256_set1_epi64x(-1))))) == 0xF) {
-    result = _mm256_set1_pd(1.0);
-  } else {
-    const __m256d var = mixture_variance4(w, A, B, mean);
-    result = chebyshev4(t, mean, var, _mm256_set1_pd(k.min_var), k.bleed);
-  }
-  if (k.maxdepth) {
-    // m = max(max(M0, M1), max(M2, M3)) in float, then t > m + eps → 0.
-    const __m256 m01 = _mm256_blendv_ps(M4[0], M4[1], _mm256_cmp_ps(M4[0], M4[1], _CMP_LT_OQ));
-    const __m256 m23 = _mm256_blendv_ps(M4[2], M4[3], _mm256_cmp_ps(M4[2], M4[3], _CMP_LT_OQ));
-    const __m256 m8 = _mm256_blendv_ps(m01, m23, _mm256_cmp_ps(m01, m23, _CMP_LT_OQ));
-    const __m256d m = _mm256_cvtps_pd(half ? _mm256_extractf128_ps(m8, 1) : _mm256_castps256_ps128(m8));
-    result = _mm256_blendv_pd(result, zero,
-                              _mm256_cmp_pd(t, _mm256_add_pd(m, _mm256_set1_pd(k.eps)), _CMP_GT_OQ));
-  }
-  return result;
-}
-
-// The 8 lanes of a batch: two halves of vsm_value4.
-SL_TARGET("avx2") void vsm_batch_avx2(const VsmConsts& k, const float (*v)[4][8],
-                                      const float* fx, const float* fy,
-                                      const float* depth, const int32_t* active,
-                                      float* out) {
-  __m256 M4[4];
-  for (int i = 0; i < 4; ++i) M4[i] = _mm256_load_ps(v[2][i]);
-  for (int half = 0; half < 2; ++half) {
-    __m256d A[4], B[4];
-    for (int i = 0; i < 4; ++i) {
-      A[i] = _mm256_cvtps_pd(_mm_load_ps(v[0][i] + 4 * half));
-      B[i] = _mm256_cvtps_pd(_mm_load_ps(v[1][i] + 4 * half));
-    }
-    const __m256d res =
-        vsm_value4(k, A, B, M4, _mm256_cvtps_pd(_mm_loadu_ps(fx + 4 * half)),
-                   _mm256_cvtps_pd(_mm_loadu_ps(fy + 4 * half)),
-                   _mm256_cvtps_pd(_mm_loadu_ps(depth + 4 * half)),
-                   _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
-                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(active + 4 * half)))),
-                   half);
-    _mm_storeu_ps(out + 4 * half, _mm256_cvtpd_ps(res));
-  }
-}
-#endif
-
 // 8 lanes at once: the interleaved moments' bilinear taps loaded by the AVX2 kernel (and the
 // max-depth plane's when maxdepth_eps > 0), then vsm_value's arithmetic in AVX2 double (fp32
 // mode: vsm_value lane by lane).
@@ -173,6 +106,7 @@ struct VsmBatch {
   VsmConsts k;
   Bilinear8x2Fn bilinear8x2;
   Bilinear8Fn bilinear8;
+  VsmBatchFn vsm_batch;  // the lookup batch table's
   PlaneGather moments, max_depth;
   Prefetch8Fn prefetch8;
   void prefetch(const MapLookupConsts& c, const Receivers8& r) const {
@@ -185,12 +119,10 @@ struct VsmBatch {
       bilinear8(c, r, &max_depth, 1, v + 2, fx, fy);
     else
       std::fill(&v[2][0][0], &v[2][0][0] + 32, 0.0f);  // no max-depth plane: unread
-#if defined(__x86_64__)
     if (!k.fp32) {
-      vsm_batch_avx2(k, v, fx, fy, r.depth, r.active, out);
+      vsm_batch(k, v, fx, fy, r.depth, r.active, out);
       return;
     }
-#endif
     for (int lane = 0; lane < 8; ++lane) {
       if (!r.active[lane]) continue;
       float A[4], B[4], M[4];
@@ -226,10 +158,11 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
     return vsm_value(k, A, B, M, bl.fx, bl.fy, r.depth);
   };
   const LookupKernels& kernels = lookup_kernels(process_isa());
-  VsmBatch batch{k, kernels.bilinear8_interleaved2, kernels.bilinear8, plane_gather(map.a),
+  VsmBatch batch{k, kernels.bilinear8_interleaved2, kernels.bilinear8,
+                 lookup_batch_kernels(process_isa()).vsm_batch, plane_gather(map.a),
                  plane_gather(map.max_depth), kernels.prefetch8};
-  const bool gathers = batch.bilinear8x2 && batch.bilinear8 && batch.moments.ok &&
-                       (!k.maxdepth || batch.max_depth.ok);
+  const bool gathers = batch.bilinear8x2 && batch.bilinear8 && batch.vsm_batch &&
+                       batch.moments.ok && (!k.maxdepth || batch.max_depth.ok);
   if (gathers)
     lookup_pixels(scene, g, p, map, mask, texels, visibility, batch);
   else
