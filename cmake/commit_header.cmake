@@ -1,6 +1,6 @@
 # Writes OUT, a header defining SHADOWLAB_COMMIT as the source tree's HEAD (12 hex digits, with
 # "-dirty" when tracked files differ from it; "unknown" outside a git checkout). Run at every
-# build by experiments/CMakeLists.txt; the file is rewritten only when its text changes, so an
+# build by lab/CMakeLists.txt; the file is rewritten only when its text changes, so an
 # unchanged commit recompiles nothing.
 execute_process(COMMAND git -C ${ROOT} rev-parse --short=12 HEAD
                 OUTPUT_VARIABLE commit OUTPUT_STRIP_TRAILING_WHITESPACE

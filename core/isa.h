@@ -7,7 +7,7 @@
 // process runs the table of process_isa(): the widest set this CPU runs, narrowed by the
 // environment — SHADOWLAB_SCALAR=1 gives scalar, SHADOWLAB_ISA=avx2 gives at most AVX2 (so that
 // both vector tables are measured and tested on one AVX-512 machine). The mains check those
-// variables strictly before any work (experiments/environment.cpp); here an unset, empty or
+// variables strictly before any work (lab/environment.cpp); here an unset, empty or
 // other value leaves the CPU's choice.
 #include <vector>
 

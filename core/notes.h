@@ -2,7 +2,7 @@
 // Notes and warnings about inputs (which of a glTF file's lights is used, statements an OBJ
 // reader skips, a --from file recorded by another build): held, not printed where they arise,
 // so that an error found later while checking the inputs is still the only line on stderr.
-// run_main (experiments/cli.h) prints them after a successful run and drops them on an error.
+// run_main (lab/cli.h) prints them after a successful run and drops them on an error.
 #include <string>
 #include <vector>
 

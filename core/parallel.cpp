@@ -20,7 +20,7 @@ namespace {
 int initial_thread_count() {
   if (const char* env = std::getenv("SHADOWLAB_THREADS"); env && *env) {
     // The rules of --threads (core/parse_number.h: no spaces, no '+'); the programs check the
-    // variable before any work (experiments/environment.h), this guards every other caller.
+    // variable before any work (lab/environment.h), this guards every other caller.
     long n = 0;
     if (!parse_long(env, n) || n < 1 || n > 1024)
       throw InputError("SHADOWLAB_THREADS", std::string("expected an integer in [1, 1024], got '") +

@@ -1,6 +1,6 @@
 #pragma once
-// A stiff hand-built case for the stability rows and the face-seam tests (experiments/
-// stability_cases.h): a scene with a GBuffer of receivers placed by hand, no camera pass.
+// A stiff hand-built case for the stability rows and the face-seam tests
+// (lab/stability_cases.h): a scene with a GBuffer of receivers placed by hand, no camera pass.
 #include "core/gbuffer.h"
 #include "core/scene.h"
 

@@ -11,7 +11,7 @@ if ! dpkg-query -W -f='${Status}' libsimde-dev 2>/dev/null | grep -q "install ok
 fi
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build-emu -DCMAKE_BUILD_TYPE=Release -DSHADOWLAB_EMULATE_SIMD=ON >/dev/null
-# The four binaries that hold the kernels' tests (the reference's and the experiments' exercise
+# The four binaries that hold the kernels' tests (the reference's and the programs' exercise
 # no kernel these do not), run from the repository root as ctest runs them; their gtest
 # arguments pass through (e.g. --gtest_filter=*Simd*).
 bins=(test_core test_raster test_techniques test_metric)

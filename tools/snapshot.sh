@@ -25,7 +25,7 @@ if [[ ${1:-} == --one ]]; then  # one render: --one BUILD_DIR INDEX MODE SCENE T
     avx2) env=(SHADOWLAB_ISA=avx2) ;;
     scalar) env=(SHADOWLAB_SCALAR=1) ;;
   esac
-  if ! env "${env[@]}" "$build/experiments/render" --scene "$scene" --width 256 --height 192 \
+  if ! env "${env[@]}" "$build/programs/render" --scene "$scene" --width 256 --height 192 \
       --threads 2 --repeats 1 --technique "$tech" --out "$out/run" "$@" >/dev/null 2>"$out/err"; then
     echo "$index $mode $scene $tech FAILED: $(head -1 "$out/err")"
     exit 0
@@ -38,7 +38,7 @@ if [[ ${1:-} == --one ]]; then  # one render: --one BUILD_DIR INDEX MODE SCENE T
 fi
 
 build=${1:-build}
-[[ -x "$build/experiments/render" ]] || { echo "snapshot.sh: $build/experiments/render: not built" >&2; exit 2; }
+[[ -x "$build/programs/render" ]] || { echo "snapshot.sh: $build/programs/render: not built" >&2; exit 2; }
 
 # Every filter on every layout; on the cube the keys that choose different kernels too.
 filters=(sm vsm esm evsm msm pcss)

@@ -22,7 +22,7 @@ args: "$args"
 YAML
 (cd "$work" && snakemake -j2 -q -s "$root/workflows/Snakefile" --configfile "$work/config.yaml" >"$work/snakemake.log" 2>&1) ||
   { tail -n 30 "$work/snakemake.log" >&2; exit 1; }
-eval "SHADOWLAB_CACHE=$work/cache $build/experiments/tune $args --threads 2 --out $work/single" >/dev/null
+eval "SHADOWLAB_CACHE=$work/cache $build/programs/tune $args --threads 2 --out $work/single" >/dev/null
 python3 - "$work/single/tune.json" "$work/out/default/tune.json" <<'PY'
 import json, sys
 a = json.load(open(sys.argv[1]))["evaluations"]

@@ -16,7 +16,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "egl_context.h"
-#include "experiments/cli.h"
+#include "lab/cli.h"
 #include "gl_depth_cube.h"
 #include "raster/depth_kernels.h"
 #include "techniques/pipeline/face_render.h"

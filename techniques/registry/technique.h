@@ -78,7 +78,7 @@ void validate_technique(const TechniqueSpec& spec, const char* flag);
 void validate_technique_for_scene(const TechniqueSpec& spec, const Scene& scene, const char* flag);
 // Memory a technique's maps take at once (bytes): the stored faces, the filter's planes and
 // scratch; 0 for the ray tracer (its BVH is counted with the scene). An estimate for the
-// up-front check of experiments/memory_check.h, not a bound.
+// up-front check of lab/memory_check.h, not a bound.
 uint64_t technique_map_bytes(const TechniqueSpec& spec, const Scene& scene, const char* flag);
 // Registered technique names with one-line descriptions (keys and defaults, from the key
 // declarations), for --help and --list-techniques.

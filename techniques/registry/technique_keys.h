@@ -2,7 +2,7 @@
 // One declaration per key of a technique spec: its name, type, default, accepted range, help and
 // the member it sets. Parsing and validation (read_keys), the "key=default,…" text of --help and
 // --list-techniques (keys_text), the key tables of docs/techniques/keys.md (--list-keys) and
-// tune's default spaces (experiments/param_space.h) all read these declarations, so a key's
+// tune's default spaces (lab/param_space.h) all read these declarations, so a key's
 // facts live in one place. `P` is the parameter struct the keys fill (MapParams, RayTracedParams).
 #include <string>
 #include <vector>
@@ -47,7 +47,7 @@ struct KeyDecl {
   const char* word = "";       // Number: one more accepted value, e.g. "light"
   const char* help = "";
   const char* needs = "";      // "key=word": read only when the spec gives key=word ("": always)
-  const char* tune = "";       // tune's default domain (experiments/param_space.h; "": not searched)
+  const char* tune = "";       // tune's default domain (lab/param_space.h; "": not searched)
   void (*store)(P&, const KeyValue&) = nullptr;  // sets the member(s) the key names
   void (*check)(const KeyCheck&, P&) = nullptr;  // rules beyond the range, after `store`
 };

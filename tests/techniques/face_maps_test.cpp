@@ -1,5 +1,5 @@
 // The face-map techniques (tsm, cvsm, tvsm, cesm, tesm, cevsm, tevsm, cmsm, tmsm): analytic scenes, seams at face
-// boundaries (in tests/experiments/face_seams_test.cpp), agreement with Embree, texel indices,
+// boundaries (in tests/lab/face_seams_test.cpp), agreement with Embree, texel indices,
 // and bad parameters.
 #include <gtest/gtest.h>
 

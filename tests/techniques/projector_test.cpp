@@ -45,7 +45,7 @@ bool clearly_outside(const Projector& p, const vec3& point, double m) {
   return !hand_st(p, point, s, t) || s < -m || s > 1 + m || t < -m || t > 1 + m;
 }
 
-// The projector of an unposed scene as experiments/cli.cpp builds it: at the light, aimed at
+// The projector of an unposed scene as lab/cli.cpp builds it: at the light, aimed at
 // the camera target, up +y, fov 60°, aspect 1.
 Projector cli_pose(const Scene& scene, const std::string& slide) {
   Projector p;

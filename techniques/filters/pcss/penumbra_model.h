@@ -23,7 +23,7 @@
 // (160 equal-area rings × 360 angles over the half disk the symmetry leaves). penumbra_transition
 // measures the width between the points where that fraction crosses 10 % and 90 % of the way
 // from its minimum (0 with an umbra) to 1, the rule measured_transition applies to a measured
-// profile (experiments/penumbra).
+// profile (programs/penumbra.cpp).
 namespace shadowlab {
 
 struct PenumbraModel {

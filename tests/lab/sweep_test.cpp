@@ -1,0 +1,112 @@
+// The sweep's scores behave as the paper's do: they rise with shadow-map resolution.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include "scenes/scene_library.h"
+#include "lab/contact_sheet.h"
+#include "lab/sweep.h"
+#include "raster/gbuffer_pass.h"
+#include "techniques/shading/scene_shading.h"
+
+namespace shadowlab {
+namespace {
+
+TEST(Sweep, FidelityAndDetailRiseWithResolution) {
+  Scene scene = make_builtin_scene("default");
+  scene.camera.width = 256;
+  scene.camera.height = 192;
+  SweepConfig c;
+  c.resolutions = {32, 128, 512};
+  c.spp = 16;
+  c.repeats = 1;
+  const SweepResult r = run_resolution_sweep(scene, c);
+  ASSERT_EQ(r.rows.size(), 3u);
+  // The reference compared with itself is perfect in every submetric.
+  const MetricReport& ref = r.reference.report;
+  for (double v : {ref.c10, ref.c50, ref.c90, ref.dark, ref.lit, ref.acne, ref.noise, ref.detail})
+    EXPECT_DOUBLE_EQ(v, 1.0);
+  // FLIP of the reference against itself is 0, on the masks and on the shaded images; a 32²
+  // map's shadows are visibly off (more FLIP than a 512² map's), on both.
+  EXPECT_EQ(ref.flip_mean, 0.0);
+  EXPECT_EQ(r.reference.flip_shaded, 0.0);
+  EXPECT_GT(r.rows[0].report.flip_mean, r.rows[2].report.flip_mean);
+  EXPECT_GT(r.rows[0].flip_shaded, r.rows[2].flip_shaded);
+  EXPECT_GT(r.rows[2].flip_shaded, 0.0);
+  // Finer maps: more texels per pixel (detail) and a better match (fidelity).
+  EXPECT_LT(r.rows[0].report.detail, r.rows[1].report.detail);
+  EXPECT_LT(r.rows[1].report.detail, r.rows[2].report.detail);
+  EXPECT_LT(r.rows[0].report.fidelity, r.rows[2].report.fidelity);
+  EXPECT_EQ(r.reference.technique, "rt");
+  for (const SweepRow& row : r.rows) {
+    EXPECT_EQ(row.technique, "csm");
+    EXPECT_GT(row.result.shadow_ms(), 0.0);
+    EXPECT_GE(row.result.faces_rendered, 1);
+    EXPECT_LE(row.result.faces_rendered, 6);
+  }
+  // Plot points: one per row (not the reference), carrying the row's numbers.
+  const std::vector<PlotPoint> points = sweep_plot_points(r);
+  ASSERT_EQ(points.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(points[i].label, r.rows[i].label);
+    EXPECT_EQ(points[i].series, "csm");
+    EXPECT_EQ(points[i].time_ms, r.rows[i].result.shadow_ms());
+    EXPECT_EQ(points[i].total, r.rows[i].report.total);
+    EXPECT_EQ(points[i].fidelity, r.rows[i].report.fidelity);
+  }
+  // Contact sheet: 1 technique row, REF + 3 resolution columns of 256×192 masks (factor 1), so
+  // each cell holds its mask unchanged, reference first.
+  const ImageF sheet = sweep_contact_sheet(r, c);
+  std::vector<std::vector<std::string>> captions(1);
+  for (const SweepRow& row : r.rows) captions[0].push_back(fmt::format("total {:.3f}", row.report.total));
+  const ContactSheetLayout l =
+      contact_sheet_layout({"CSM"}, {"32", "128", "512"}, 256, 192, true, {}, &captions);
+  ASSERT_EQ(l.factor, 1);
+  ASSERT_EQ(sheet.width, l.width);
+  ASSERT_EQ(sheet.height, l.height);
+  for (int col = 0; col < 4; ++col) {
+    const ImageF& m = col == 0 ? r.reference.result.mask : r.rows[size_t(col - 1)].result.mask;
+    int differ = 0;
+    for (int y = 0; y < 192; ++y)
+      for (int x = 0; x < 256; ++x)
+        differ += sheet.at(l.cell_x(col) + x, l.cell_y(0) + y) != m.at(x, y);
+    EXPECT_EQ(differ, 0) << "column " << col;
+  }
+  // The shaded sheet: the same layout in RGB, each cell the row's shaded image (shade_scene of
+  // its mask; factor 1 here).
+  SweepConfig shaded_config = c;
+  shaded_config.shaded_sheet = true;
+  const ImageF colour = sweep_contact_sheet(r, shaded_config);
+  ASSERT_EQ(colour.channels, 3);
+  ASSERT_EQ(colour.height, l.height);
+  const ImageF shaded = shade_scene(scene, render_gbuffer(scene), r.rows[2].result.mask, c.ambient);
+  int differ = 0;
+  for (int ch = 0; ch < 3; ++ch)
+    for (int y = 0; y < 192; ++y)
+      for (int x = 0; x < 256; ++x) differ += colour.at(l.cell_x(3) + x, l.cell_y(0) + y, ch) != shaded.at(x, y, ch);
+  EXPECT_EQ(differ, 0);
+}
+
+// The number under each cell says what it is: the sheet is exactly the one whose captions read
+// "total 0.834" (the row's total, named, 3 decimals).
+TEST(Sweep, ContactSheetCaptionsNameTheScore) {
+  SweepConfig c;
+  c.techniques = {"csm:pcf=3"};
+  c.resolutions = {64};
+  SweepResult r;
+  r.reference.result.mask = ImageF(64, 48, 1, 1.0f);
+  SweepRow row;
+  row.result.mask = ImageF(64, 48, 1, 0.25f);
+  row.report.total = 0.8341;
+  r.rows = {row};
+  const ImageF sheet = sweep_contact_sheet(r, c);
+  const std::vector<std::vector<std::string>> captions = {{"total 0.834"}};
+  const ImageF expected = contact_sheet({"CSM:PCF=3"}, {"64"}, {{&r.rows[0].result.mask}},
+                                        &r.reference.result.mask, {}, &captions);
+  ASSERT_EQ(sheet.width, expected.width);
+  ASSERT_EQ(sheet.height, expected.height);
+  EXPECT_TRUE(sheet.data == expected.data);
+}
+
+}  // namespace
+}  // namespace shadowlab

@@ -1,0 +1,51 @@
+// The tuner's decisions on hand-made numbers: the budget winner and halving's survivors.
+#include <gtest/gtest.h>
+
+#include "lab/tune_report.h"
+#include "lab/tuner.h"
+
+namespace shadowlab {
+namespace {
+
+TuneSummary summary(size_t point, const std::string& technique, double objective, double ms, double bytes) {
+  TuneSummary s;
+  s.point = point;
+  s.technique = technique;
+  s.spec = technique + std::to_string(point);
+  s.objective = objective;
+  s.time_ms = ms;
+  s.bytes = bytes;
+  return s;
+}
+
+TEST(Tune, BudgetWinnerIsTheBestThatFitsThenTheCheapest) {
+  const std::vector<TuneSummary> s = {
+      summary(0, "csm", 0.80, 1.0, 100), summary(1, "csm", 0.90, 3.0, 400),
+      summary(2, "cvsm", 0.90, 2.0, 900), summary(3, "cvsm", 0.95, 8.0, 50),
+      summary(4, "csm", 0.90, 2.0, 300)};
+  EXPECT_EQ(best_under(s, 0.5, false), nullptr);           // nothing fits
+  EXPECT_EQ(best_under(s, 1.0, false)->point, 0u);         // a cost equal to the budget fits
+  EXPECT_EQ(best_under(s, 2.5, false)->point, 2u);         // 0.90 at 2 ms twice: lower index
+  EXPECT_EQ(best_under(s, 3.0, false)->point, 2u);         // 0.90 at 3 ms loses to 2 ms
+  EXPECT_EQ(best_under(s, 10.0, false)->point, 3u);
+  EXPECT_EQ(best_under(s, 2.5, false, "csm")->point, 4u);  // per technique
+  EXPECT_EQ(best_under(s, 60.0, true)->point, 3u);         // bytes budget
+  EXPECT_EQ(best_under(s, 350.0, true, "csm")->point, 4u);
+}
+
+TEST(Tune, HalvingKeepsNonDominatedLayersUntilAThird) {
+  // Nine points. Layer 1 (no point has fewer bytes and a higher objective): 0, 3, 6.
+  // Layer 2 after removing them: 1, 4, 7. eta = 3 needs 3 points: layer 1 only.
+  const std::vector<double> obj = {0.5, 0.4, 0.1, 0.7, 0.6, 0.2, 0.9, 0.8, 0.3};
+  const std::vector<double> bytes = {1, 1.5, 2, 2, 2.5, 3, 3, 3.5, 4};
+  EXPECT_EQ(halving_survivors(obj, bytes, 3), (std::vector<size_t>{0, 3, 6}));
+  // eta = 2 needs 5: layers 1 and 2 (6 points).
+  EXPECT_EQ(halving_survivors(obj, bytes, 2), (std::vector<size_t>{0, 1, 3, 4, 6, 7}));
+  // eta = 1 keeps everything.
+  EXPECT_EQ(halving_survivors(obj, bytes, 1).size(), 9u);
+  // Ties do not dominate each other: both stay.
+  EXPECT_EQ(halving_survivors({0.5, 0.5, 0.1}, {1, 1, 1}, 3), (std::vector<size_t>{0, 1}));
+}
+
+}  // namespace
+}  // namespace shadowlab
