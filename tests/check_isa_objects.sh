@@ -4,6 +4,9 @@
 # compiler from contracting a multiply and an add into one rounding, which would give other
 # bits than the scalar oracles (docs/simd.md). No kernel calls an FMA intrinsic, so any
 # vfmadd / vfmsub / vfnmadd / vfnmsub (every form: 132, 213, 231, ps, pd, ss, sd, addsub) is one.
+# It also fails when such an object has a static initializer (_GLOBAL__sub_I_*) holding a VEX or
+# EVEX instruction: that code runs when the library loads, on any CPU, before the ISA is chosen
+# (a header table initialized by a function call, included by an ISA file, does it).
 #
 # Usage: check_isa_objects.sh OBJECT...   (the objects of the build's libraries and tests; those
 # not named *_avx2.cpp.o or *_avx512.cpp.o are ignored). Exit 0: none found; 1: found (listed);
@@ -30,6 +33,13 @@ for obj in "$@"; do
   if [[ -n $hits ]]; then
     echo "$obj: $(wc -l <<<"$hits") fused multiply-add instruction(s), e.g.:"
     head -3 <<<"$hits"
+    bad=1
+  fi
+  init=$(objdump -d --no-show-raw-insn "$obj" |
+    awk '/^[0-9a-f]+ <_GLOBAL__sub_I/ { p = 1; next } /^$/ { p = 0 } p' | grep -E $'\tv[a-z0-9]+ ')
+  if [[ -n $init ]]; then
+    echo "$obj: a static initializer holds $(wc -l <<<"$init") vector instruction(s), e.g.:"
+    head -3 <<<"$init"
     bad=1
   fi
 done

@@ -20,10 +20,11 @@ inline const vec3 kCubeForward[kCubeFaces] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                               {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 inline const vec3 kCubeUp[kCubeFaces] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
                                          {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-inline const vec3 kCubeRight[kCubeFaces] = {
-    glm::cross(kCubeForward[0], kCubeUp[0]), glm::cross(kCubeForward[1], kCubeUp[1]),
-    glm::cross(kCubeForward[2], kCubeUp[2]), glm::cross(kCubeForward[3], kCubeUp[3]),
-    glm::cross(kCubeForward[4], kCubeUp[4]), glm::cross(kCubeForward[5], kCubeUp[5])};
+// Written out (glm::cross's bits, signed zeros included: CubeFaces.RightIsForwardCrossUpBitForBit)
+// so that every table is constant-initialized: a dynamic initializer in a header that AVX2 files
+// include would be compiled for AVX2 and run at load time on any CPU.
+inline const vec3 kCubeRight[kCubeFaces] = {{0, 0, -1}, {0, 0, 1},        {1, 0, 0},
+                                            {1, 0, 0},  {1, 0, -0.0f},    {-1, -0.0f, -0.0f}};
 
 // Face of a (non-zero) direction from the light. (Inline: it runs once per lookup.)
 inline int cube_face_of(const vec3& d) {

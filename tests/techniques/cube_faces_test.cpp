@@ -1,6 +1,8 @@
 // Cube-face selection and face coordinates agree between rendering and lookup.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <random>
 
 #include "techniques/pipeline/cube_faces.h"
@@ -18,6 +20,19 @@ TEST(CubeFaces, MajorAxisWithFixedTieBreak) {
   // Ties: x before y before z.
   EXPECT_EQ(cube_face_of({1, 1, 1}), 0);
   EXPECT_EQ(cube_face_of({0, -1, -1}), 3);
+}
+
+// The written-out right axes are forward × up, computed here by glm, bit for bit (signed zeros
+// too), and each face's three axes are an orthonormal right-handed frame (right × up = −forward:
+// the view looks down −z).
+TEST(CubeFaces, RightIsForwardCrossUpBitForBit) {
+  for (int face = 0; face < kCubeFaces; ++face) {
+    const vec3 want = glm::cross(kCubeForward[face], kCubeUp[face]);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(std::bit_cast<uint32_t>(kCubeRight[face][c]), std::bit_cast<uint32_t>(want[c]))
+          << "face " << face << " component " << c;
+    EXPECT_EQ(glm::cross(kCubeRight[face], kCubeUp[face]), -kCubeForward[face]) << face;
+  }
 }
 
 TEST(CubeFaces, DirectionThroughFaceCoordinatesProjectsBack) {
