@@ -17,7 +17,9 @@ namespace shadowlab {
 namespace {
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  // Length 0 compares nothing (memcmp must not get the empty vectors' null pointers).
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 // Lengths 0..40 (every tail of the 16-column blocks and of the vectors) and 9 taps.
