@@ -199,6 +199,22 @@ class Dataset:
         return [self.frame(n) for n in self.splits[split]]
 
 
+def check_frames(frames, names=DEFAULT_FEATURES):
+    """Before training: every frame has the network's features, and its feature planes (every
+    copy) and references are finite (one pass over the memory-mapped planes)."""
+    for fr in frames:
+        missing = [n for n in names if n not in fr.features]
+        if missing:
+            raise DataError(f"{fr.path}: features {missing} are missing")
+        for c in range(COPIES):
+            for n in names:
+                if not np.isfinite(fr.feature(c, n)).all():
+                    raise DataError(f"{fr.path}: feature {n} of copy {c} has non-finite values")
+        for k in range(len(fr.radii)):
+            if not np.isfinite(fr.reference(k)).all():
+                raise DataError(f"{fr.path}: reference {k} has non-finite values")
+
+
 def feature_stats(frames, names=DEFAULT_FEATURES):
     """Per feature mean and std over the covered pixels of copy 0 of `frames`, in float64.
     For c_e_r every radius of a frame counts once per pixel (the reader draws radii uniformly),

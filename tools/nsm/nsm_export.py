@@ -32,6 +32,17 @@ def align64(n):
     return (n + 63) // 64 * 64
 
 
+def json_safe(v):
+    """Provenance values as strict JSON: a non-finite float becomes its name ("nan", "inf")."""
+    if isinstance(v, float) and not math.isfinite(v):
+        return str(v)
+    if isinstance(v, dict):
+        return {str(k): json_safe(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [json_safe(x) for x in v]
+    return v
+
+
 def encode(model, features, dtype="f16", provenance=None):
     """The bytes of a .nsmw for `model` (its mean/std buffers are the standardization)."""
     if dtype not in ("f32", "f16"):
@@ -39,6 +50,11 @@ def encode(model, features, dtype="f16", provenance=None):
     cfg = model.config
     np_dtype = np.dtype("<f2") if dtype == "f16" else np.dtype("<f4")
     arrays = [(n, t.detach().cpu().numpy().astype(np.float32)) for n, t in model.tensor_order()]
+    for n, a in arrays:
+        if not np.isfinite(a).all():
+            raise ValueError(f"tensor {n} has non-finite values")
+        if dtype == "f16" and np.abs(a).max(initial=0.0) > 65504.0:
+            raise ValueError(f"tensor {n} exceeds binary16's range (65504)")
     blobs = [(n, a.shape, a.astype(np_dtype).tobytes()) for n, a in arrays]
     mean = [float(v) for v in model.mean.detach().cpu().numpy().astype(np.float32)]
     std = [float(v) for v in model.std.detach().cpu().numpy().astype(np.float32)]
@@ -54,8 +70,8 @@ def encode(model, features, dtype="f16", provenance=None):
                   "r_max": R_MAX, "scale_ref": SCALE_REF, "dtype": dtype,
                   "tensors": [{"name": n, "shape": list(s), "offset": o}
                               for (n, s, _), o in zip(blobs, offsets)],
-                  "provenance": provenance or {}}
-        hj = json.dumps(header).encode()
+                  "provenance": json_safe(provenance or {})}
+        hj = json.dumps(header, allow_nan=False).encode()
         data_start = align64(12 + len(hj))
         if data_start == start:
             break

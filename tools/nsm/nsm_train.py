@@ -12,7 +12,6 @@ thread count. Bits repeat per machine kind and thread count (oneDNN picks its ke
 so both are in the provenance.
 """
 import argparse
-import json
 import math
 import os
 import platform
@@ -27,8 +26,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import nsm_export  # noqa: E402
-from nsm_data import DataError, Dataset, Sampler, feature_stats  # noqa: E402
-from nsm_loss import ALPHA, masked_mean, nsm_loss  # noqa: E402
+from nsm_data import DataError, Dataset, Sampler, check_frames, feature_stats  # noqa: E402
+from nsm_loss import ALPHA, nsm_loss  # noqa: E402
 from nsm_model import CONFIGS, DEFAULT_FEATURES, build, macs_per_pixel, param_counts  # noqa: E402
 
 PROGRAM = "nsm_train"
@@ -108,6 +107,7 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
     val_frames = ds.frames("val")
     if not train_frames:
         raise DataError(f"{os.path.join(data, 'manifest.json')}: the train split is empty")
+    check_frames(train_frames + val_frames)
     mean, std = feature_stats(train_frames)
     model = build(config)  # after manual_seed: the initial weights follow the seed
     model.set_standardization(mean, std)

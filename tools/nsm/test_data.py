@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import nsm_synthetic
-from nsm_data import DataError, Dataset, Frame, Sampler, feature_stats
+from nsm_data import DataError, Dataset, Frame, Sampler, check_frames, feature_stats
+from nsm_fnv import fnv1a64
 from nsm_model import DEFAULT_FEATURES
 
 W, H = nsm_synthetic.W, nsm_synthetic.H
@@ -108,3 +109,19 @@ def test_manifest_errors_name_the_file(tmp_path, dataset_dir):
     (d / "manifest.json").write_text("not json")
     with pytest.raises(DataError, match="manifest.json: "):
         Dataset(str(d))
+
+
+def test_non_finite_features_and_missing_features_are_refused(tmp_path):
+    p = str(tmp_path / "f.nsmf")
+    nsm_synthetic.write_frame(p, 0, 7, W, H)
+    check_frames([Frame(p)])
+    data = bytearray(open(p, "rb").read())
+    fr = Frame(p)
+    off = fr.feature_offsets[2][fr.features.index("d")] + 4 * 7
+    data[off:off + 4] = np.float32(np.nan).tobytes()
+    data[-8:] = struct.pack("<Q", fnv1a64(bytes(data[:-8])))  # a valid checksum: the values are bad
+    open(p, "wb").write(bytes(data))
+    with pytest.raises(DataError, match="feature d of copy 2 has non-finite values"):
+        check_frames([Frame(p)])
+    with pytest.raises(DataError, match="are missing"):
+        check_frames([Frame(p)], names=["d", "n_x"])

@@ -91,3 +91,18 @@ def test_loaded_model_computes_the_same_output(tmp_path):
     with torch.no_grad():
         assert torch.equal(net(x), loaded(x))
     assert h["provenance"] == {"k": 1}
+
+
+def test_non_finite_or_out_of_range_weights_are_not_exported():
+    net = model()
+    with torch.no_grad():
+        net.mid.conv3.bias[0] = 70000.0  # beyond binary16's largest finite value, 65504
+    nsm_export.encode(net, DEFAULT_FEATURES, "f32")
+    with pytest.raises(ValueError, match="mid.conv3.bias"):
+        nsm_export.encode(net, DEFAULT_FEATURES, "f16")
+    with torch.no_grad():
+        net.mid.conv3.bias[0] = float("nan")
+    with pytest.raises(ValueError, match="non-finite"):
+        nsm_export.encode(net, DEFAULT_FEATURES, "f32")
+    h, _ = nsm_export.decode(nsm_export.encode(model(), DEFAULT_FEATURES, "f32", {"v": float("nan")}))
+    assert h["provenance"] == {"v": "nan"}

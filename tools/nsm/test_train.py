@@ -2,7 +2,6 @@
 the command line's bad-input lines. One thread (the machine is shared; bits repeat per
 thread count)."""
 import numpy as np
-import pytest
 
 import nsm_export
 import nsm_train
