@@ -98,3 +98,10 @@ def write_dataset(folder, n_train=6, n_val=2, w=W, h=H, seed=7):
     with open(os.path.join(folder, "manifest.json"), "w") as f:
         json.dump(manifest, f, indent=1)
     return folder
+
+
+if __name__ == "__main__":
+    import sys
+    if len(sys.argv) != 2:
+        sys.exit("usage: nsm_synthetic.py OUT_FOLDER  (writes the tests' synthetic data set)")
+    write_dataset(sys.argv[1])
