@@ -90,7 +90,6 @@ class Frame:
         self.size = size
         if verify:
             self.verify()
-        self._map = np.memmap(path, dtype=np.uint8, mode="r", shape=(size,))
 
     def _check_header(self, h):
         p = self.path
@@ -126,8 +125,10 @@ class Frame:
         return stored
 
     def _plane(self, offset, dtype):
-        n = self.width * self.height * np.dtype(dtype).itemsize
-        return self._map[offset:offset + n].view(dtype).reshape(self.height, self.width)
+        # Mapped on each access and released with the array: a data set of thousands of frames
+        # holds no file descriptor open between samples (a mapping keeps one).
+        return np.memmap(self.path, dtype=dtype, mode="r", offset=offset,
+                         shape=(self.height, self.width))
 
     def feature(self, copy, name):
         if name not in self.features:

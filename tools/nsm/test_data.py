@@ -125,3 +125,16 @@ def test_non_finite_features_and_missing_features_are_refused(tmp_path):
         check_frames([Frame(p)])
     with pytest.raises(DataError, match="are missing"):
         check_frames([Frame(p)], names=["d", "n_x"])
+
+
+def test_open_frames_hold_no_file_descriptors(dataset_dir):
+    import resource
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    resource.setrlimit(resource.RLIMIT_NOFILE, (min(64, hard), hard))
+    try:
+        frames = [Frame(frame_path(dataset_dir, i % 6), verify=False) for i in range(200)]
+        s = Sampler(frames, 32, 4, seed=1)
+        for _ in range(50):
+            s.batch(4)
+    finally:
+        resource.setrlimit(resource.RLIMIT_NOFILE, (soft, hard))
