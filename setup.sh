@@ -4,7 +4,8 @@
 # incremental build. Usage: bash setup.sh [--tests]
 # --tests also installs what only the tests need: snakemake (about 145 Python packages, for the
 # workflow test of workflows/) and libsimde-dev (headers only, for the emulated-SIMD test build
-# that runs the AVX-512 kernels on machines without AVX-512: docs/testing.md), so the main
+# that runs the AVX-512 kernels on machines without AVX-512: docs/testing.md) and PyTorch
+# (CPU), numpy and pytest (the network's training tests, tools/nsm/run_tests.sh), so the main
 # command's first run stays lean.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -13,7 +14,7 @@ packages=(cmake g++ make pkg-config libembree-dev libtbb-dev libglm-dev libopene
           libtinyobjloader-dev libgtest-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev
           libcli11-dev libfmt-dev libtinygltf-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(snakemake libsimde-dev)
+  packages+=(snakemake libsimde-dev python3-torch python3-numpy python3-pytest)
 elif [ $# -gt 0 ]; then
   echo "setup.sh: unknown argument '$1' (usage: bash setup.sh [--tests])" >&2
   exit 2
