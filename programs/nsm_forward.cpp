@@ -10,6 +10,8 @@
 #include <cstring>
 #include <random>
 
+#include <nlohmann/json.hpp>
+
 #include "core/input_file.h"
 #include "core/isa.h"
 #include "core/output_file.h"
@@ -33,6 +35,7 @@ int main(int argc, char** argv) {
     mark_unused(cl, unused, "the network reads feature planes, not a scene");
     std::string weights, input, precision_name = "f32";
     int repeats = 0, seed = 1;
+    bool dump = false;
     add_text(cl, "--weights", "FILE", "the network's .nsmw weights file (required)", weights);
     add_text(cl, "--input", "FILE",
              "raw feature planes: F planes of W x H little-endian fp32, plane after plane "
@@ -47,6 +50,10 @@ int main(int argc, char** argv) {
             "time N forward passes after one untimed warm-up and print the median (default 0: "
             "one untimed pass)",
             repeats, 0, 1000);
+    add_switch(cl, "--dump",
+               "also write every stored activation tensor to DIR/tensors/NAME.f32 ([y][x][c] "
+               "fp32) with its shape in DIR/tensors.json (for the per-pass check against PyTorch)",
+               dump);
     if (!parse_command_line(cl, argc, argv)) return 0;
     if (weights.empty()) throw InputError("--weights", "required (a .nsmw file)");
     NsmPrecision precision = NsmPrecision::f32;
@@ -85,7 +92,20 @@ int main(int argc, char** argv) {
     const NsmNetwork net = nsm_network(w);
     std::vector<float> out(plane);
     NsmForwardStats stats;
-    nsm_forward(net, planes.data(), W, H, out.data(), precision, &stats);
+    nlohmann::json index = nlohmann::json::array();
+    NsmTensorSink sink = nullptr;
+    if (dump) {
+      const std::string folder = outputs.subfolder("tensors");
+      sink = [&index, folder](const std::string& name, const NsmTensor& t) {
+        std::string b(size_t(t.w) * t.h * t.c * 4, '\0');
+        for (int y = 0; y < t.h; ++y)
+          std::memcpy(b.data() + size_t(y) * t.w * t.c * 4, t.px(y, 0), size_t(t.w) * t.c * 4);
+        write_text_file(folder + "/" + name + ".f32", b);
+        index.push_back({{"name", name}, {"height", t.h}, {"width", t.w}, {"channels", t.c}});
+      };
+    }
+    nsm_forward(net, planes.data(), W, H, out.data(), precision, &stats, sink);
+    if (dump) write_text_file(outputs.dir() + "/tensors.json", index.dump(1) + "\n");
     std::printf("nsm_forward: %d levels, %dx%d (padded %dx%d), %d threads, %s kernels, %s storage\n",
                 w.arch.levels, W, H, stats.padded_width, stats.padded_height, thread_count(),
                 isa_name(process_isa()), nsm_precision_name(precision));

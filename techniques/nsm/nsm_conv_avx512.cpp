@@ -22,10 +22,14 @@ inline void tile(const NsmConvRowArgs& a, int x0, int b0) {
     const __m512 bias = _mm512_loadu_ps(a.bias + size_t(b0 + b) * 16);
     for (int p = 0; p < P; ++p) acc[b][p] = bias;
   }
+  // One (ic, ky, kx) step at a time: unrolled, the weights of three steps would join the
+  // accumulators in registers and spill them.
   for (int ic = 0; ic < cin; ++ic)
+#pragma GCC unroll 1
     for (int ky = 0; ky < K; ++ky) {
       const float* r = a.rows[ky] + size_t(x0) * cin + ic;
       const float* w = wb + (size_t(ic) * taps + ky * K) * 16;
+#pragma GCC unroll 1
       for (int kx = 0; kx < K; ++kx) {
         __m512 wv[NB];
         for (int b = 0; b < NB; ++b) wv[b] = _mm512_loadu_ps(w + b * bstride + kx * 16);

@@ -252,19 +252,20 @@ void nsm_decoder_level(const NsmTensor& coarse, const NsmTensor* skip, const Nsm
 }
 
 void nsm_forward(const NsmNetwork& net, const float* planes, int width, int height, float* out,
-                 NsmPrecision precision, NsmForwardStats* stats) {
+                 NsmPrecision precision, NsmForwardStats* stats, const NsmTensorSink& sink) {
   const NsmArch& a = net.arch;
   SL_CHECK(width > 0 && height > 0);
   const int L = a.levels, m = 1 << (L - 1);
   const int pw = (width + m - 1) / m * m, ph = (height + m - 1) / m * m;
   uint64_t bytes = 0;
-  auto stored = [&](NsmTensor& t) {
+  auto stored = [&](NsmTensor& t, const std::string& name) {
     nsm_quantize(t, precision);
     bytes += uint64_t(t.w) * t.h * t.c * 4;
+    if (sink) sink(name, t);
   };
   NsmTensor x;
   nsm_input(net, planes, width, height, pw, ph, x);
-  stored(x);
+  stored(x, "input");
   // Encoder: level 0 keeps no skip (decoder 0 has none); levels 1..L−2 keep e_l.
   std::vector<NsmTensor> skips(size_t(L) - 1);
   size_t ci = 0;
@@ -273,19 +274,19 @@ void nsm_forward(const NsmNetwork& net, const float* planes, int width, int heig
     nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], l == 0 ? nullptr : &skips[size_t(l)],
                   &pooled);
     ci += 2;
-    if (l > 0) stored(skips[size_t(l)]);
-    stored(pooled);
+    if (l > 0) stored(skips[size_t(l)], "enc" + std::to_string(l));
+    stored(pooled, "pool" + std::to_string(l));
     x = std::move(pooled);
   }
   NsmTensor u;
   nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], &u, nullptr);
   ci += 2;
-  stored(u);
+  stored(u, "mid");
   for (int l = L - 2; l >= 1; --l) {
     NsmTensor next;
     nsm_decoder_level(u, &skips[size_t(l)], net.convs[ci], net.convs[ci + 1], next);
     ci += 2;
-    stored(next);
+    stored(next, "dec" + std::to_string(l));
     u = std::move(next);
   }
   // Decoder 0 and the head, cropped to width × height.

@@ -19,6 +19,8 @@
 // summation order (techniques/nsm/nsm_conv.h), so the result does not depend on the thread count
 // or the instruction set.
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "techniques/nsm/nsm_weights.h"
@@ -64,10 +66,15 @@ struct NsmForwardStats {
   uint64_t activation_bytes = 0;  // the tensors that reach memory, at 4 bytes a value
 };
 
+// Receives every tensor that reaches memory, as stored, under its name: "input", "enc<l>" (the
+// skip e_l, l ≥ 1), "pool<l>" (the pooled e_l), "mid" (the bottleneck's u), "dec<l>" (l ≥ 1).
+using NsmTensorSink = std::function<void(const std::string& name, const NsmTensor& t)>;
+
 // The forward pass: `planes` holds F = net.arch.features planes of width × height fp32 values,
 // plane after plane, row-major; `out` receives width × height values in (0, 1).
 void nsm_forward(const NsmNetwork& net, const float* planes, int width, int height, float* out,
-                 NsmPrecision precision = NsmPrecision::f32, NsmForwardStats* stats = nullptr);
+                 NsmPrecision precision = NsmPrecision::f32, NsmForwardStats* stats = nullptr,
+                 const NsmTensorSink& sink = nullptr);
 
 // The passes nsm_forward is made of, for the tests.
 // Standardized, edge-replicated input of pw × ph (pw ≥ width, ph ≥ height).

@@ -1,8 +1,10 @@
 """The C++ forward pass (build/programs/nsm_forward) against the independent PyTorch reference
-(tools/nsm/torch_reference.py) in float64: |C++ − torch64| ≤ the per-pixel rounding bound of
-spec §6 at every pixel, on random weights and inputs (tiny with edge padding, nsm5, nsm3 with f16
-weights). Prints observed/bound. Run: python3 -m pytest -s tools/nsm/test_torch_match.py
+(tools/nsm/torch_reference.py) in float64, on random weights and inputs (tiny with edge padding,
+nsm5, nsm3 with f16 weights): |C++ − torch64| ≤ the per-pixel rounding bound of spec §6 at every
+pixel end to end, and each pass (encoder level, bottleneck, decoder level, head) from the C++'s
+own stored inputs within that pass's bound (nsm_forward --dump). Prints observed/bound. Run: python3 -m pytest -s tools/nsm/test_torch_match.py
 (SHADOWLAB_BUILD names the build folder; default build/)."""
+import json
 import os
 import subprocess
 import sys
@@ -38,7 +40,8 @@ def run_case(tmp, arch, dtype, width, height, seed):
     planes.astype("<f4").tofile(planes_path)
     out = os.path.join(tmp, f"out_{arch}")
     r = subprocess.run([PROGRAM, "--weights", weights, "--input", planes_path, "--width",
-                        str(width), "--height", str(height), "--threads", "2", "--out", out],
+                        str(width), "--height", str(height), "--threads", "2", "--dump",
+                        "--out", out],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     cpp = np.fromfile(os.path.join(out, "output.f32"), dtype="<f4").reshape(height, width)
@@ -46,7 +49,11 @@ def run_case(tmp, arch, dtype, width, height, seed):
     ref = torch_reference.forward(w, planes, torch.float64)
     ref32 = torch_reference.forward(w, planes, torch.float32)
     b = torch_reference.bound(w, planes)
-    return cpp.astype(np.float64), ref, ref32, b
+    index = json.load(open(os.path.join(out, "tensors.json")))
+    tensors = {t["name"]: np.fromfile(os.path.join(out, "tensors", t["name"] + ".f32"), dtype="<f4")
+               .reshape(t["height"], t["width"], t["channels"]) for t in index}
+    passes = torch_reference.pass_checks(w, planes, tensors, cpp)
+    return cpp.astype(np.float64), ref, ref32, b, passes
 
 
 @pytest.mark.skipif(not os.path.exists(PROGRAM), reason="nsm_forward not built")
@@ -54,12 +61,18 @@ def run_case(tmp, arch, dtype, width, height, seed):
 def test_cpp_matches_torch64_within_the_bound(arch, dtype, width, height, seed):
     torch.set_num_threads(2)
     with tempfile.TemporaryDirectory() as tmp:
-        cpp, ref, ref32, b = run_case(tmp, arch, dtype, width, height, seed)
+        cpp, ref, ref32, b, passes = run_case(tmp, arch, dtype, width, height, seed)
     err = np.abs(cpp - ref)
     err32 = np.abs(ref32 - ref)
     print(f"\n{arch} {dtype} {width}x{height}: C++ max |err| {err.max():.3g}, bound max "
           f"{b.max():.3g}, min {b.min():.3g}, max err/bound {(err / b).max():.3g}; "
           f"torch fp32: max |err| {err32.max():.3g}, max err/bound {(err32 / b).max():.3g}")
     assert np.all(err <= b), f"{int((err > b).sum())} pixels over the bound"
+    # Each pass from the C++'s own stored inputs, against its one-pass bound: tight, where the
+    # end-to-end bound above grows by Σ|w| per layer and is loose at nsm5's depth.
+    for name, e, bmax, ratio, over in passes:
+        print(f"  pass {name:10s} max |err| {e:.3g}  max bound {bmax:.3g}  max err/bound {ratio:.3g}")
+    for name, e, bmax, ratio, over in passes:
+        assert over == 0, f"pass {name}: {over} values over the bound (max err/bound {ratio:.3g})"
     # The outputs are not all saturated: the comparison says something.
     assert 0.02 < np.median(ref) < 0.98 or ref.std() > 1e-3

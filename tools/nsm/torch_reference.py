@@ -152,3 +152,75 @@ def bound(w, planes):
         s = torch.sigmoid(x)
         e = e / 4 + 4 * U * s
     return e[0, 0, :H, :W].numpy()
+
+
+def _conv(w, x, e, name, relu):
+    """One conv in float64 with its (value, error bound), as in bound()."""
+    wt, b = w.conv(name, torch.float64)
+    n = wt.shape[1] * wt.shape[2] * wt.shape[3] + 1
+    pad = wt.shape[2] // 2
+    y = F.conv2d(x, wt, b, padding=pad)
+    mag = F.conv2d(x.abs() + e, wt.abs(), b.abs(), padding=pad)
+    e = F.conv2d(e, wt.abs(), padding=pad) + gamma(n) * mag
+    return (F.relu(y) if relu else y), e
+
+
+def _pair(w, x, e, name):
+    x, e = _conv(w, x, e, name + ".conv3", True)
+    return _conv(w, x, e, name + ".conv1", True)
+
+
+def pass_checks(w, planes, tensors, output):
+    """Each pass of the C++ forward from the C++'s own stored inputs (`tensors`: name -> numpy
+    [h][w][c] fp32, as nsm_forward --dump writes them; `output` (H, W)), in float64 with the
+    bound of that pass alone (module docstring, started from e = 0). Returns a list of
+    (pass name, max |C++ − torch64|, max bound, max |err|/bound, pixels over the bound)."""
+    d = torch.float64
+    L = w.levels
+    H, W = planes.shape[1:]
+
+    def t(name):
+        a = tensors[name]
+        return torch.from_numpy(a.astype(np.float64)).permute(2, 0, 1)[None]
+
+    rows = []
+
+    def check(name, got, ref, e):
+        err = (got - ref).abs()
+        ratio = err / e
+        rows.append((name, float(err.max()), float(e.max()), float(ratio.max()),
+                     int((err > e).sum())))
+
+    with torch.no_grad():
+        x = padded_input(w, planes, d)
+        check("input", t("input"), x, 2.001 * U * x.abs())
+        for l in range(L - 1):
+            src = t("input") if l == 0 else t(f"pool{l - 1}")
+            y, e = _pair(w, src, torch.zeros_like(src), f"enc{l}")
+            if l > 0:
+                check(f"enc{l}", t(f"enc{l}"), y, e)
+            p = F.avg_pool2d(y, 2)
+            pe = F.avg_pool2d(e, 2) + gamma(3) * F.avg_pool2d(y.abs() + e, 2)
+            check(f"pool{l}", t(f"pool{l}"), p, pe)
+        src = t(f"pool{L - 2}")
+        y, e = _pair(w, src, torch.zeros_like(src), "mid")
+        check("mid", t("mid"), y, e)
+        for l in range(L - 2, -1, -1):
+            u = t("mid") if l == L - 2 else t(f"dec{l + 1}")
+            ux = up(u)
+            ue = gamma(5) * up(u.abs())
+            if l > 0:
+                s = t(f"enc{l}")
+                x = ux + s
+                e = ue + U * (ux.abs() + s.abs() + ue)
+            else:
+                x, e = ux, ue
+            y, e = _pair(w, x, e, f"dec{l}")
+            if l > 0:
+                check(f"dec{l}", t(f"dec{l}"), y, e)
+        y, e = _conv(w, y, e, "head.conv1", False)
+        s = torch.sigmoid(y)
+        e = e / 4 + 4 * U * s
+        got = torch.from_numpy(output.astype(np.float64))
+        check("dec0+head", got, s[0, 0, :H, :W], e[0, 0, :H, :W])
+    return rows
