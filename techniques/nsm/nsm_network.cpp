@@ -105,7 +105,17 @@ const char* nsm_precision_name(NsmPrecision p) {
 }
 
 float nsm_round_storage(float v, NsmPrecision p) {
-  if (p == NsmPrecision::f16) return float(static_cast<_Float16>(v));
+  if (p == NsmPrecision::f16) {
+    // binary16 keeps 11 significant bits down to 2^−14 and a fixed quantum 2^−24 below it;
+    // nearbyint rounds to nearest even (the default mode), and the scalings are exact.
+    if (!std::isfinite(v)) return v;
+    const float a = std::fabs(v);
+    if (a >= 65520.0f) return std::copysign(INFINITY, v);  // past 65504 + half its quantum
+    int e = 0;
+    std::frexp(a, &e);  // a = m · 2^e, m in [0.5, 1)
+    const float q = std::ldexp(1.0f, std::max(e - 11, -24));
+    return std::copysign(std::nearbyint(a / q) * q, v);
+  }
   if (p == NsmPrecision::bf16) {
     if (std::isnan(v)) return v;
     uint32_t b;

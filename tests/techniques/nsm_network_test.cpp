@@ -320,6 +320,12 @@ TEST(NsmNetwork, SixteenBitStorageStaysNearFp32) {
   EXPECT_EQ(nsm_round_storage(1.0f + std::ldexp(1.0f, -11), NsmPrecision::f16), 1.0f);  // tie → even
   EXPECT_EQ(nsm_round_storage(1.0f + 3 * std::ldexp(1.0f, -11), NsmPrecision::f16),
             1.0f + std::ldexp(1.0f, -9));
+  // binary16's ends: the largest finite value, overflow, ties in the subnormal range.
+  EXPECT_EQ(nsm_round_storage(65519.0f, NsmPrecision::f16), 65504.0f);
+  EXPECT_TRUE(std::isinf(nsm_round_storage(-65520.0f, NsmPrecision::f16)));
+  EXPECT_EQ(nsm_round_storage(std::ldexp(1.0f, -25), NsmPrecision::f16), 0.0f);
+  EXPECT_EQ(nsm_round_storage(3 * std::ldexp(1.0f, -25), NsmPrecision::f16), std::ldexp(1.0f, -23));
+  EXPECT_EQ(nsm_round_storage(std::ldexp(1.0f, -14) * 1.0003f, NsmPrecision::f16), std::ldexp(1.0f, -14));
   EXPECT_EQ(nsm_round_storage(1.0f + std::ldexp(1.0f, -8), NsmPrecision::bf16), 1.0f);
   EXPECT_EQ(nsm_round_storage(1.0f + 3 * std::ldexp(1.0f, -8), NsmPrecision::bf16),
             1.0f + std::ldexp(1.0f, -6));
