@@ -5,11 +5,27 @@
 #if defined(__x86_64__)
 #include <immintrin.h>
 
+#include <cmath>
 #include <cstddef>
 
 #include "techniques/nsm/nsm_conv.h"
 
 namespace shadowlab::nsm_conv_avx2 {
+
+// w · x + acc with one rounding. SIMDe's portable fmadd (the emulated build) rounds the product
+// and the sum apart, so there each lane calls std::fma, as the oracle does.
+inline __m256 fmadd(__m256 w, __m256 x, __m256 acc) {
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  alignas(32) float a[8], b[8], c[8];
+  _mm256_store_ps(a, w);
+  _mm256_store_ps(b, x);
+  _mm256_store_ps(c, acc);
+  for (int i = 0; i < 8; ++i) c[i] = std::fma(a[i], b[i], c[i]);
+  return _mm256_load_ps(c);
+#else
+  return _mm256_fmadd_ps(w, x, acc);
+#endif
+}
 
 // Lanes [0, n) of v stored to o (n in 1..8).
 inline void store_first(float* o, __m256 v, int n) {
@@ -42,8 +58,8 @@ inline void tile(const NsmConvRowArgs& a, int x0, int b0) {
         const __m256 w1 = _mm256_loadu_ps(w + kx * 16 + 8);
         for (int p = 0; p < P; ++p) {
           const __m256 xv = _mm256_broadcast_ss(r + size_t(p + kx) * cin);
-          lo[p] = _mm256_fmadd_ps(w0, xv, lo[p]);
-          hi[p] = _mm256_fmadd_ps(w1, xv, hi[p]);
+          lo[p] = fmadd(w0, xv, lo[p]);
+          hi[p] = fmadd(w1, xv, hi[p]);
         }
       }
     }

@@ -5,11 +5,27 @@
 #if defined(__x86_64__)
 #include <immintrin.h>
 
+#include <cmath>
 #include <cstddef>
 
 #include "techniques/nsm/nsm_conv.h"
 
 namespace shadowlab::nsm_conv_avx512 {
+
+// w · x + acc with one rounding. SIMDe's portable fmadd (the emulated build) rounds the product
+// and the sum apart, so there each lane calls std::fma, as the oracle does.
+inline __m512 fmadd(__m512 w, __m512 x, __m512 acc) {
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  alignas(64) float a[16], b[16], c[16];
+  _mm512_store_ps(a, w);
+  _mm512_store_ps(b, x);
+  _mm512_store_ps(c, acc);
+  for (int i = 0; i < 16; ++i) c[i] = std::fma(a[i], b[i], c[i]);
+  return _mm512_load_ps(c);
+#else
+  return _mm512_fmadd_ps(w, x, acc);
+#endif
+}
 
 template <int K, int NB, int P>
 inline void tile(const NsmConvRowArgs& a, int x0, int b0) {
@@ -35,7 +51,7 @@ inline void tile(const NsmConvRowArgs& a, int x0, int b0) {
         for (int b = 0; b < NB; ++b) wv[b] = _mm512_loadu_ps(w + b * bstride + kx * 16);
         for (int p = 0; p < P; ++p) {
           const __m512 xv = _mm512_set1_ps(r[size_t(p + kx) * cin]);
-          for (int b = 0; b < NB; ++b) acc[b][p] = _mm512_fmadd_ps(wv[b], xv, acc[b][p]);
+          for (int b = 0; b < NB; ++b) acc[b][p] = fmadd(wv[b], xv, acc[b][p]);
         }
       }
     }
