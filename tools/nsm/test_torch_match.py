@@ -76,3 +76,26 @@ def test_cpp_matches_torch64_within_the_bound(arch, dtype, width, height, seed):
         assert over == 0, f"pass {name}: {over} values over the bound (max err/bound {ratio:.3g})"
     # The outputs are not all saturated: the comparison says something.
     assert 0.02 < np.median(ref) < 0.98 or ref.std() > 1e-3
+
+
+def test_reference_equals_the_training_model():
+    """torch_reference.py and the training model (tools/nsm/nsm_model.py, loaded by
+    nsm_export.load_model) on one file in float64: the same network, two definitions."""
+    nsm_export = pytest.importorskip("nsm_export")
+    torch.set_num_threads(2)
+    levels, widths, bottleneck = nsmw_write.ARCHS["nsm3"]
+    tensors = nsmw_write.random_tensors(levels, widths, bottleneck, 11)
+    mean, std = [0.9, -0.1, 0.5, 2.0], [0.2, 0.3, 0.4, 1.5]
+    rng = np.random.default_rng(12)
+    planes = (np.array(mean)[:, None, None] + np.array(std)[:, None, None] *
+              rng.standard_normal((4, 32, 40))).astype(np.float32)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "nsm3.nsmw")
+        nsmw_write.write_nsmw(path, levels, widths, bottleneck, tensors, mean, std)
+        net, _ = nsm_export.load_model(path)
+        mine = torch_reference.forward(torch_reference.Weights(path), planes, torch.float64)
+    with torch.no_grad():
+        theirs = net.double()(torch.from_numpy(planes.astype(np.float64))[None])[0, 0].numpy()
+    diff = np.abs(mine - theirs).max()
+    print(f"\nreference vs training model, float64: max |diff| {diff:.3g}")
+    assert diff <= 1e-12
