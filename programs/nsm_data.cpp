@@ -18,14 +18,14 @@ using namespace shadowlab;
 
 namespace {
 
-// "W,H", each in [8, 8192].
+// "W,H", each in [8, 4096].
 void parse_crop(const std::string& text, NsmDatasetParams& p) {
   const std::vector<std::string> parts = split(text, ',');
   long w = 0, h = 0;
   if (parts.size() != 2 || !parse_long(parts[0], w) || !parse_long(parts[1], h))
     throw InputError("--crop", "expected W,H (two integers), got '" + text + "'");
-  if (w < 8 || h < 8 || w > 8192 || h > 8192)
-    throw InputError("--crop", "each side must lie in [8, 8192], got '" + text + "'");
+  if (w < 8 || h < 8 || w > 4096 || h > 4096)
+    throw InputError("--crop", "each side must lie in [8, 4096], got '" + text + "'");
   p.crop_w = int(w);
   p.crop_h = int(h);
 }
@@ -56,8 +56,9 @@ int main(int argc, char** argv) {
     set_default_size(cl, common, 1024, 768, "the full frame, the inference resolution");
     std::vector<std::string> unused;
     for (const std::string& n : common_scene_flags())
-      if (n != "--out" && n != "--width" && n != "--height") unused.push_back(n);
+      if (n != "--out" && n != "--width" && n != "--height" && n != "--max-memory") unused.push_back(n);
     mark_unused(cl, unused, "the frames' scenes are --scenes, their views and lights the trajectories");
+    mark_unused(cl, {"--max-memory"}, "a frame's memory is bounded by the flags' ranges (--width, --height <= 4096, --base-res <= 4096: about 1 GB)");
     NsmDatasetParams p;
     std::string scenes = "default", crop = "256,192", val = "0.1", test = "0.1", features = "all";
     int seed = 1;
@@ -74,8 +75,8 @@ int main(int argc, char** argv) {
     if (!parse_command_line(cl, argc, argv)) return 0;
     p.width = common.width.value_or(1024);
     p.height = common.height.value_or(768);
-    if (p.width > 8192 || p.height > 8192)
-      throw InputError(p.width > 8192 ? "--width" : "--height", "the frame's sides must be at most 8192");
+    if (p.width > 4096 || p.height > 4096)
+      throw InputError(p.width > 4096 ? "--width" : "--height", "the frame's sides must be at most 4096");
     p.seed = uint64_t(seed);
     parse_crop(crop, p);
     p.scenes.clear();

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "core/parallel.h"
 #include "raster/gbuffer_pass.h"
@@ -14,7 +15,8 @@
 #include "techniques/nsm/nsm_features.h"
 
 namespace shadowlab {
-namespace {
+// A named namespace: the unity build compiles several test files in one translation unit.
+namespace nsm_features_test {
 
 constexpr int kRes = 256;     // base map face edge
 constexpr float kHalf = 0.6f; // the occluder's half side
@@ -163,5 +165,5 @@ TEST(NsmFeatures, SameBitsAt1_2_7Threads) {
   set_thread_count(saved);
 }
 
-}  // namespace
+}  // namespace nsm_features_test
 }  // namespace shadowlab
