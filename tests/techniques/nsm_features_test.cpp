@@ -136,8 +136,8 @@ TEST(NsmFeatures, UncoveredPixelsAreZero) {
   EXPECT_GT(uncovered, 300u);
 }
 
-// An empty texel (the light sees nothing) gives far: a pixel whose ray from the light leaves
-// the scene is impossible on a closed floor, so the map is cleared and the lookups read +inf.
+// An empty texel (the light saw nothing there, +inf) gives far. The floor fills every texel a
+// pixel reads, so the test empties the rendered map: every covered pixel then reads +inf.
 TEST(NsmFeatures, EmptyTexelIsFar) {
   Fixture x;
   for (size_t f = 0; f < x.map.dist.distance.size(); ++f)
