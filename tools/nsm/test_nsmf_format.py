@@ -1,4 +1,5 @@
-"""Cross-language check of the .nsmf format: build/programs/nsm_data writes a tiny data set,
+"""Cross-language check of the .nsmf format: build/programs/nsm_data writes a tiny data set
+(a 30x22 window: 660 coverage bytes, so the padding to 64 is exercised),
 tools/nsm/nsmf_check.py reads it (skipped when the program is not built)."""
 import json
 import os
@@ -21,7 +22,7 @@ def dataset(tmp_path_factory):
     if not os.access(PROGRAM, os.X_OK):
         pytest.skip("build/programs/nsm_data is not built")
     out = tmp_path_factory.mktemp("nsm") / "data"
-    subprocess.run([PROGRAM, "--width", "64", "--height", "48", "--crop", "32,24", "--frames", "2",
+    subprocess.run([PROGRAM, "--width", "64", "--height", "48", "--crop", "30,22", "--frames", "2",
                     "--spp", "4", "--base-res", "64", "--threads", "2", "--out", str(out)],
                    check=True, capture_output=True)
     return out
@@ -41,7 +42,7 @@ def test_frames_read_and_hashes_match(dataset):
     hashes = b""
     for i, name in enumerate(names):
         header, planes = nsmf_check.read_nsmf(dataset / "frames" / name)
-        assert (header["width"], header["height"], header["frame"]) == (32, 24, i)
+        assert (header["width"], header["height"], header["frame"]) == (30, 22, i)
         assert header["copies"] == 4 and header["spp"] == 4
         assert header["radii"] == [0, 0.075, 0.15, 0.225, 0.3]
         assert len(planes["copies"]) == 4
