@@ -144,6 +144,13 @@ std::string SpecReader::get_choice(const std::string& key, const std::string& fa
                               it->second + "'");
 }
 
+std::string SpecReader::get_text(const std::string& key, const std::string& fallback) {
+  used_.push_back(key);
+  const auto it = spec_.params.find(key);
+  if (it == spec_.params.end()) return fallback;
+  return it->second;
+}
+
 bool SpecReader::has(const std::string& key) const { return spec_.params.count(key) > 0; }
 
 bool SpecReader::gives(const std::string& key, const std::string& word) const {

@@ -49,6 +49,8 @@ class SpecReader {
   // One of `choices` (exact text), else InputError listing them.
   std::string get_choice(const std::string& key, const std::string& fallback,
                          const std::vector<std::string>& choices);
+  // The value as written (a file path), or fallback (parse_spec refuses an empty value).
+  std::string get_text(const std::string& key, const std::string& fallback);
   // True when the spec gives `key` (whatever its value; does not mark it used).
   bool has(const std::string& key) const;
   // True when `key` is given as exactly `word`, without marking it used.

@@ -59,6 +59,11 @@ nlohmann::json timing_json(const ShadowResult& r) {
   j["map_ms"] = ms(r.map_ms);
   j["lookup_ms"] = ms(r.lookup_ms);
   j["shadow_ms"] = ms(r.shadow_ms());
+  // A network's phases (nsm: lookup_ms = features_ms + network_ms); absent elsewhere.
+  if (r.network_ms > 0.0) {
+    j["features_ms"] = ms(r.features_ms);
+    j["network_ms"] = ms(r.network_ms);
+  }
   const WorkCounts& w = r.work;
   j["work"] = {{"triangles_submitted", w.triangles_submitted},
                {"triangles_binned", w.triangles_binned},
@@ -70,6 +75,10 @@ nlohmann::json timing_json(const ShadowResult& r) {
                {"bytes_written", w.bytes_written},
                {"bytes_read", w.bytes_read},
                {"bytes_touched", w.bytes_touched()}};
+  if (w.multiply_adds > 0) {
+    j["work"]["multiply_adds"] = w.multiply_adds;
+    j["work"]["activation_bytes"] = w.activation_bytes;
+  }
   return j;
 }
 

@@ -198,9 +198,10 @@ bool same_space(const ParamSpace& a, const ParamSpace& b) {
 }
 
 std::vector<std::string> default_param_spaces() {
-  // Depth compare on the three layouts that cover every direction, and every filter on the cube.
+  // Depth compare on the three layouts that cover every direction, every filter on the cube,
+  // and the neural technique on its shipped model.
   static const char* const kDefaultTuneTechniques[] = {"csm", "tsm", "dsm", "cvsm", "cesm",
-                                                       "cevsm", "cmsm", "cpcss"};
+                                                       "cevsm", "cmsm", "cpcss", "nsm"};
   std::vector<std::string> out;
   for (const char* name : kDefaultTuneTechniques) out.push_back(technique_tune_space(name, "--space"));
   return out;

@@ -67,6 +67,11 @@ int main(int argc, char** argv) {
                 (unsigned long long)w.texels_rendered, (unsigned long long)w.texels_filtered,
                 (unsigned long long)w.pixels_looked_up, w.taps_per_pixel(),
                 double(w.bytes_written) * 1e-6, double(w.bytes_read) * 1e-6);
+    if (r.network_ms > 0.0)
+      std::printf("network: features %.3f ms + forward %.3f ms; %.3g multiply-adds, %.2f MB of "
+                  "activations\n",
+                  r.features_ms, r.network_ms, double(w.multiply_adds),
+                  double(w.activation_bytes) * 1e-6);
     std::printf("wrote %s/mask.exr, mask.png%s, timing.json, shaded.exr, shaded.png\n", out.c_str(),
                 r.texels.empty() ? "" : ", texel.exr");
     return 0;

@@ -52,8 +52,8 @@ float nsm_scene_scale(const Scene& scene) {
 
 float nsm_size_code(float radius) { return 4.0f * radius / kNsmRadiusMax; }
 
-MapParams nsm_base_map_params(int res) {
-  MapParams p = default_map_params(FaceLayoutKind::Cube, MapFilter::Depth);
+MapParams nsm_base_map_params(int res, FaceLayoutKind layout) {
+  MapParams p = default_map_params(layout, MapFilter::Depth);
   p.res = res;
   p.depth = DepthFormat::F32;
   p.bias = 0.0f;
@@ -67,11 +67,26 @@ MapParams nsm_base_map_params(int res) {
 void build_nsm_base_map(const Scene& scene, const GBuffer& g, int res, LightMap& map) {
   const MapParams p = nsm_base_map_params(res);
   map.layout = map_layout(p, scene);
-  // The faces some covered pixel reads (facing the light or not: every covered pixel has a z).
-  std::vector<bool> needed(map.layout.faces.size(), false);
+  render_light_map(scene, p, nsm_faces_needed(scene, g, map.layout), map);
+}
+
+std::vector<bool> nsm_faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout) {
+  std::vector<bool> needed(layout.faces.size(), false);
   for (size_t i = 0; i < g.pixel_count(); ++i)
-    if (g.covered[i]) needed[size_t(face_of(map.layout, g.position[i] - scene.light.position))] = true;
-  render_light_map(scene, p, needed, map);
+    if (g.covered[i]) needed[size_t(face_of(layout, g.position[i] - scene.light.position))] = true;
+  return needed;
+}
+
+ImageU32 nsm_map_texels(const Scene& scene, const GBuffer& g, int res, const LightMap& map) {
+  const MapParams p = nsm_base_map_params(res);
+  ImageU32 t(g.width, g.height, 1, kNoTexel);
+  parallel_for_chunks(g.pixel_count(), 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i)
+      if (g.covered[i] && faces_light(g, i, scene.light.position))
+        t.data[i] = nsm_features_impl::nearest_receiver(scene, map.layout, p, g.position[i],
+                                                        g.geo_normal[i]).texel;
+  });
+  return t;
 }
 
 std::vector<float> nsm_map_distances(const Scene& scene, const GBuffer& g, int res,

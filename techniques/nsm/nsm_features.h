@@ -39,15 +39,23 @@ float nsm_scene_scale(const Scene& scene);
 // r_e = 4·R/kNsmRadiusMax.
 float nsm_size_code(float radius);
 
-// The base map's parameters: csm at resolution `res`, fp32 depths, nearest texel (pcf=1), no
-// constant, slope or normal-offset bias.
-MapParams nsm_base_map_params(int res);
+// The base map's parameters: csm (or the depth-compare map of another layout) at resolution
+// `res`, fp32 depths, nearest texel (pcf=1), no constant, slope or normal-offset bias. Every
+// layout stores the same radial distance; only the texels' sizes and shapes differ.
+MapParams nsm_base_map_params(int res, FaceLayoutKind layout = FaceLayoutKind::Cube);
+// The base map's faces some covered pixel of `g` reads (its face along p − L, whether the pixel
+// faces the light or not: every covered pixel has a z).
+std::vector<bool> nsm_faces_needed(const Scene& scene, const GBuffer& g, const FaceLayout& layout);
 // Renders the base map's faces that some covered pixel of `g` looks up (its face along p − L).
 void build_nsm_base_map(const Scene& scene, const GBuffer& g, int res, LightMap& map);
 // The map's nearest texel along p − L for every pixel: the stored radial distance × far in
 // metres (far where the texel saw nothing), 0 where the pixel is not covered.
 std::vector<float> nsm_map_distances(const Scene& scene, const GBuffer& g, int res,
                                      const LightMap& map);
+
+// The texel index (Receiver::texel) of that nearest texel per pixel, kNoTexel where the pixel is
+// not covered or faces away from the light (the detail score's texel image).
+ImageU32 nsm_map_texels(const Scene& scene, const GBuffer& g, int res, const LightMap& map);
 
 struct NsmFeatures {
   int width = 0, height = 0;

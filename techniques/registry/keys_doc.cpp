@@ -82,7 +82,11 @@ std::string technique_keys_markdown() {
       ". Each filter's table shows it on the cube layout (`c`); the lines under it give what "
       "the other layouts change.\n\n"
       "## rt\n\n" + technique_what("rt", "--list-keys") + ".\n\n" +
-      key_table(technique_keys("rt", "--list-keys"));
+      key_table(technique_keys("rt", "--list-keys")) +
+      "\n## nsm\n\n" + technique_what("nsm", "--list-keys") +
+      " (docs/techniques/nsm.md). The base map is the cube layout's, fp32, nearest texel, no "
+      "bias: the network learns its own.\n\n" +
+      key_table(technique_keys("nsm", "--list-keys"));
   for (const MapFilterOps* f : map_filters()) {
     const std::string cube = "c" + std::string(f->suffix);
     s += "\n## " + std::string(f->suffix) + "\n\n" + f->what + ".\n\n" +

@@ -10,6 +10,8 @@
 #include "techniques/pipeline/light_map.h"
 #include "techniques/pipeline/map_params.h"
 #include "techniques/pipeline/map_filter.h"
+#include "techniques/nsm/nsm_features.h"
+#include "techniques/nsm/nsm_technique.h"
 #include "techniques/rt/ray_traced.h"
 
 namespace shadowlab {
@@ -64,6 +66,17 @@ std::vector<Entry> make_registry() {
                   run_ray_traced, false,
                   [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); },
                   [](const TechniqueSpec&, const Scene&, const char*) {}});
+  rows.push_back({"nsm", "Neural Shadow Mapping: a UNet on one plain cube map's features",
+                  key_infos(nsm_keys()),
+                  [](const TechniqueSpec& s, const char* flag) { load_nsm_weights(parse_nsm(s, flag), flag); },
+                  run_nsm, false,
+                  [](const TechniqueSpec& s, const Scene& scene, const char* flag) {
+                    return nsm_technique_bytes(s, scene, nullptr, flag);
+                  },
+                  [](const TechniqueSpec& s, const Scene& scene, const char* flag) {
+                    const NsmParams p = parse_nsm(s, flag);
+                    check_map_spans_scene(s, nsm_base_map_params(p.res, p.layout), scene, flag);
+                  }});
   for (const LayoutName& l : kLayouts)
     for (const MapFilterOps* f : map_filters()) {
       const FaceLayoutKind layout = l.kind;

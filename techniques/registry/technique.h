@@ -25,10 +25,12 @@ struct WorkCounts {
   uint64_t taps = 0;                 // map texels those lookups read (the filter's footprint)
   uint64_t bytes_written = 0;        // map storage written: distances + stored filtered planes
   uint64_t bytes_read = 0;           // map storage read by the lookups: taps × bytes per tap
+  uint64_t multiply_adds = 0;        // a network's multiply-adds (nsm; 0 elsewhere)
+  uint64_t activation_bytes = 0;     // a network's activations that reach memory, 4 B a value
   double taps_per_pixel() const {
     return pixels_looked_up ? double(taps) / double(pixels_looked_up) : 0.0;
   }
-  uint64_t bytes_touched() const { return bytes_written + bytes_read; }
+  uint64_t bytes_touched() const { return bytes_written + bytes_read + activation_bytes; }
 };
 
 // What a technique returns. Mask convention (docs/design.md §4): visibility in [0,1], 1 where no
@@ -42,7 +44,9 @@ struct ShadowResult {
   double render_ms = 0.0;     // face render + store (quantize)
   double filter_ms = 0.0;     // moment transform + blur (0 for depth compare)
   double map_ms = 0.0;        // median of faces + render + filter
-  double lookup_ms = 0.0;     // per-pixel lookup / ray pass
+  double lookup_ms = 0.0;     // per-pixel lookup / ray pass (nsm: features + network)
+  double features_ms = 0.0;   // nsm: the network's input planes (0 elsewhere)
+  double network_ms = 0.0;    // nsm: the network's forward pass (0 elsewhere)
   WorkCounts work;
   int faces_total = 0;        // faces of the layout (6 for a cube map)
   int faces_needed = 0;       // faces some pixel's lookup touches

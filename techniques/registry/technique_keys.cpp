@@ -40,6 +40,9 @@ bool read_key_value(SpecReader& r, const char* name, KeyType type, double def, c
     case KeyType::Choice:
       v.word = r.get_choice(name, def_word, choice_words(choices));
       break;
+    case KeyType::Text:
+      v.word = r.get_text(name, def_word);
+      break;
     case KeyType::Number:
       if (*word && r.is_word(name, word)) {
         v.word = word;
@@ -53,7 +56,7 @@ bool read_key_value(SpecReader& r, const char* name, KeyType type, double def, c
 }
 
 std::string key_default_text(KeyType type, double def, const char* def_word) {
-  if (type == KeyType::Choice || *def_word) return def_word;
+  if (type == KeyType::Choice || type == KeyType::Text || *def_word) return def_word;
   return fmt::format("{:g}", def);
 }
 
@@ -65,6 +68,7 @@ std::string key_range_text(KeyType type, double lo, double hi, const char* choic
     case KeyType::Flag:
       return "0|1";
     case KeyType::Choice:
+    case KeyType::Text:
       return choices;
     case KeyType::Number:
       return "[" + number_text(lo) + ", " + number_text(hi) + "]" + (*word ? std::string(" or ") + word : "");

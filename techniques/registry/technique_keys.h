@@ -16,12 +16,13 @@ enum class KeyType {
   Number,   // a number in [lo, hi]; `word` may name one more accepted value
   Flag,     // 0 or 1
   Choice,   // one of `choices`
+  Text,     // any non-empty text without ',' or ':' (a file path); `choices` describes it
 };
 
 // What a spec gave for a key, as its declaration's type reads it.
 struct KeyValue {
   double number = 0.0;  // Integer, Number, Flag; a Number given as its word: the declared default
-  std::string word;     // Choice: the word; Number: `word` when the spec gives it
+  std::string word;     // Choice, Text: the word; Number: `word` when the spec gives it
   bool given = false;   // the spec names the key
 };
 
@@ -38,12 +39,12 @@ struct KeyDecl {
   const char* name = "";
   KeyType type = KeyType::Number;
   double def = 0.0;            // Integer, Number (unless def_word), Flag
-  const char* def_word = "";   // Choice default; Number: the default when it is `word`
+  const char* def_word = "";   // Choice and Text default; Number: the default when it is `word`
   double lo = 0.0, hi = 0.0;   // accepted range (Integer, Number)
   // The reader refuses values outside [lo, parse_hi] ("is outside"); values in (hi, parse_hi]
   // are left to `check`, which refuses them with the reason (0: parse_hi = hi).
   double parse_hi = 0.0;
-  const char* choices = "";    // Choice: the accepted words, "a|b|c"
+  const char* choices = "";    // Choice: the accepted words, "a|b|c"; Text: what it names
   const char* word = "";       // Number: one more accepted value, e.g. "light"
   const char* help = "";
   const char* needs = "";      // "key=word": read only when the spec gives key=word ("": always)
@@ -55,6 +56,7 @@ struct KeyDecl {
 // The type-free part of a declaration, for texts and tables.
 struct KeyInfo {
   std::string name, def, range, help, needs, tune;
+  bool text = false;  // KeyType::Text: `range` describes the value, it lists none
 };
 
 // Reads one key of r's spec (nothing when its `needs` is not met) into the value it parses.
@@ -70,7 +72,8 @@ std::string key_range_text(KeyType type, double lo, double hi, const char* choic
 template <class P>
 KeyInfo key_info(const KeyDecl<P>& k) {
   return {k.name, key_default_text(k.type, k.def, k.def_word),
-          key_range_text(k.type, k.lo, k.hi, k.choices, k.word), k.help, k.needs, k.tune};
+          key_range_text(k.type, k.lo, k.hi, k.choices, k.word), k.help, k.needs, k.tune,
+          k.type == KeyType::Text};
 }
 
 template <class P>

@@ -27,12 +27,13 @@ TEST(KeysDoc, KeysPageEqualsListKeys) {
 }
 
 // tune's spaces without --space, as the searches were designed: depth compare on the cube, the
-// tetrahedral and the dual-paraboloid layout, every filter on the cube.
+// tetrahedral and the dual-paraboloid layout, every filter on the cube, and nsm's base map.
 TEST(KeysDoc, TuneDefaultSpacesFromTheDeclarations) {
   const std::vector<std::string> expected = {
       "csm:res=256..2048/x2,pcf=1|3|5", "tsm:res=256..2048/x2,pcf=1|3", "dsm:res=512..2048/x2",
       "cvsm:res=256..1024/x2,blur=3|5", "cesm:res=256..1024/x2,blur=3|5",
-      "cevsm:res=256..1024/x2,moments=2|4", "cmsm:res=256..1024/x2", "cpcss:res=256..1024/x2"};
+      "cevsm:res=256..1024/x2,moments=2|4", "cmsm:res=256..1024/x2", "cpcss:res=256..1024/x2",
+      "nsm:res=512..2048/x2"};
   EXPECT_EQ(default_param_spaces(), expected);
 }
 

@@ -13,6 +13,7 @@
 #include "core/parse_number.h"
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/pipeline/map_params.h"
+#include "techniques/nsm/nsm_technique.h"
 #include "techniques/rt/ray_traced.h"
 #include "techniques/registry/technique.h"
 
@@ -39,6 +40,11 @@ std::string params_text(const std::string& name, const std::string& spec_text) {
   if (name == "rt") {
     const RayTracedParams p = parse_ray_traced(spec, "t");
     return std::to_string(p.spp) + " " + std::to_string(p.hard) + " " + std::to_string(p.seed);
+  }
+  if (name == "nsm") {
+    const NsmParams p = parse_nsm(spec, "t");
+    return p.weights + " " + std::to_string(p.res) + " " + std::to_string(int(p.layout)) + " " +
+           std::to_string(int(p.precision));
   }
   FaceLayoutKind layout{};
   MapFilter filter{};
@@ -112,6 +118,12 @@ TEST(TechniqueKeys, DeclaredRangesAreWhatParsingAccepts) {
         const std::string s = spec_with(name, ctx, k.name, v);
         EXPECT_NE(refusal(s), "") << s << " was accepted";
       };
+      if (k.text) {  // a file: the default names a file that exists, another name none
+        accepted(k.def);
+        refused("no_such_file_here.nsmw");
+        ++checked;
+        continue;
+      }
       std::string range = k.range;
       std::string word;
       if (const size_t o = range.find(" or "); o != std::string::npos) {
@@ -151,7 +163,7 @@ TEST(TechniqueKeys, DeclaredRangesAreWhatParsingAccepts) {
       ++checked;
     }
   }
-  EXPECT_GT(checked, 200u);  // 24 light-map techniques × 6..11 keys + rt's 3
+  EXPECT_GT(checked, 200u);  // 24 light-map techniques × 6..11 keys + rt's 3 + nsm's 3
 }
 
 // A key that needs another key's word is unknown without it.

@@ -113,6 +113,7 @@ class Frame:
                                      and math.isfinite(r) and 0 <= r <= R_MAX for r in self.radii):
             raise DataError(f"{p}: radii must be numbers in [0, {R_MAX}]")
         self.scale = float(h["scale"])
+        self.scene = str(h.get("scene", ""))
         if not (math.isfinite(self.scale) and self.scale > 0):
             raise DataError(f"{p}: scale must be positive")
 
@@ -184,7 +185,7 @@ class Dataset:
 
     @property
     def dataset_hash(self):
-        return self.manifest.get("dataset_hash")
+        return self.manifest.get("hash")
 
     def frame_path(self, name):
         # Split entries are frame file names inside frames/ (a name with a folder is taken
@@ -239,6 +240,16 @@ def feature_stats(frames, names=DEFAULT_FEATURES):
     return mean.astype(np.float32), std.astype(np.float32)
 
 
+def loss_mask(fr, copy):
+    """The pixels that carry loss: covered, and facing the light where the frame stores c_e
+    (the technique writes 0 on surfaces facing away, whatever the network says: the mask
+    convention of docs/design.md §4)."""
+    m = np.array(fr.coverage(copy)) != 0
+    if "c_e" in fr.features:
+        m &= np.array(fr.feature(copy, "c_e")) > 0
+    return m
+
+
 class Sampler:
     """Deterministic training samples from a seed: frames in a fresh random order each pass,
     per sample a radius drawn uniformly from the frame's radii and a crop position."""
@@ -264,7 +275,7 @@ class Sampler:
         x0 = int(self.rng.integers(fr.width - self.crop + 1))
         c = self.crop
         x = np.stack([fr.inputs(cp, self.names, k, y0, x0, c, c) for cp in range(COPIES)])
-        cov = np.stack([fr.coverage(cp)[y0:y0 + c, x0:x0 + c] != 0 for cp in range(COPIES)])
+        cov = np.stack([loss_mask(fr, cp)[y0:y0 + c, x0:x0 + c] for cp in range(COPIES)])
         target = np.array(fr.reference(k)[y0:y0 + c, x0:x0 + c], np.float32)
         return x, cov.astype(np.float32), target
 

@@ -80,8 +80,9 @@ def perturbation_term(x0, perturbed, cov0, covs):
     return total
 
 
-def nsm_loss(model, x, cov, target, perturbation=True):
-    """x [4, N, F, h, w] (copy 0, then the perturbed copies), cov [4, N, 1, h, w],
+def nsm_loss(model, x, cov, target, perturbation=1.0):
+    """perturbation: the weight of the perturbation term (0: none; 1: Eq. 2's).
+    x [4, N, F, h, w] (copy 0, then the perturbed copies), cov [4, N, 1, h, w],
     target [N, 1, h, w]. Returns (loss, dict of float parts)."""
     x0 = model(x[0])
     main = pair_loss(x0, target, cov[0])
@@ -91,6 +92,6 @@ def nsm_loss(model, x, cov, target, perturbation=True):
         with torch.no_grad():
             outs = [model(x[i]) for i in range(1, x.shape[0])]
         pert = perturbation_term(x0, outs, cov[0], [cov[i] for i in range(1, x.shape[0])])
-        loss = loss + pert
+        loss = loss + float(perturbation) * pert
         parts["perturbation"] = float(pert)
     return loss, parts

@@ -92,7 +92,7 @@ def write_dataset(folder, n_train=6, n_val=2, w=W, h=H, seed=7):
                                   pad_tail=(i % 2 == 1)))
         names.append(name)
     ds_hash = fnv1a64(b"".join(struct.pack("<Q", x) for x in hashes))
-    manifest = {"command": "nsm_synthetic", "commit": "none", "dataset_hash": f"{ds_hash:016x}",
+    manifest = {"command": "nsm_synthetic", "commit": "none", "hash": f"{ds_hash:016x}",
                 "splits": {"train": names[:n_train], "val": names[n_train:], "test": []},
                 "scenes": {"train": ["synthetic"], "val": ["synthetic"], "test": []}}
     with open(os.path.join(folder, "manifest.json"), "w") as f:

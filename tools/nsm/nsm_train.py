@@ -26,7 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import nsm_export  # noqa: E402
-from nsm_data import DataError, Dataset, Sampler, check_frames, feature_stats  # noqa: E402
+from nsm_data import DataError, Dataset, Sampler, check_frames, feature_stats, loss_mask  # noqa: E402
 from nsm_loss import ALPHA, nsm_loss  # noqa: E402
 from nsm_model import CONFIGS, DEFAULT_FEATURES, build, macs_per_pixel, param_counts  # noqa: E402
 
@@ -51,8 +51,8 @@ def cosine_lr(step, steps, lr, lr_min):
 
 
 def validation_l1(model, frames, names=DEFAULT_FEATURES):
-    """Masked L1 of copy 0's output against the reference over every covered pixel of every
-    frame and radius (pooled), each frame cropped at the top left to multiples of 2^(L-1)."""
+    """Masked L1 of copy 0's output against the reference over every pixel of nsm_data.loss_mask
+    (covered, facing the light) of every frame and radius (pooled), each frame cropped at the top left to multiples of 2^(L-1)."""
     if not frames:
         return None
     m = model.config.multiple
@@ -62,7 +62,7 @@ def validation_l1(model, frames, names=DEFAULT_FEATURES):
             h, w = fr.height // m * m, fr.width // m * m
             if h == 0 or w == 0:
                 continue
-            cov = torch.from_numpy(np.array(fr.coverage(0)[:h, :w] != 0, np.float32))
+            cov = torch.from_numpy(np.array(loss_mask(fr, 0)[:h, :w], np.float32))
             for k in range(len(fr.radii)):
                 x = torch.from_numpy(fr.inputs(0, names, k, 0, 0, h, w))[None]
                 t = torch.from_numpy(np.array(fr.reference(k)[:h, :w], np.float32))
@@ -98,7 +98,8 @@ def cpu_model():
 
 
 def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e-5, seed=1,
-          threads=2, log_every=50, perturbation=True, fixed_batch=False, log=print, dataset=None):
+          threads=2, log_every=50, perturbation=True, fixed_batch=False, log=print, dataset=None,
+          clip=0.0):
     """Returns (model, history [(step, loss, parts)], validation L1, provenance dict)."""
     setup_torch(seed, threads)
     t_start = time.time()
@@ -123,6 +124,8 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
         loss, parts = nsm_loss(model, x, cov, t, perturbation)
         opt.zero_grad(set_to_none=True)
         loss.backward()
+        if clip > 0:
+            torch.nn.utils.clip_grad_norm_(model.parameters(), clip)
         opt.step()
         history.append((step, float(loss), parts))
         if log_every and ((step + 1) % log_every == 0 or step + 1 == steps):
@@ -140,10 +143,10 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
     prov = {"program": PROGRAM, "dataset_hash": ds.dataset_hash, "dataset": os.path.abspath(data),
             "train_frames": len(train_frames), "val_frames": len(val_frames),
             "commit": git_commit(), "seed": seed, "steps": steps, "batch": batch, "crop": crop,
-            "lr": lr, "lr_min": lr_min, "schedule": "cosine", "optimizer": "Adam(0.9,0.999)",
+            "lr": lr, "lr_min": lr_min, "clip": clip, "schedule": "cosine", "optimizer": "Adam(0.9,0.999)",
             "loss": f"{ALPHA} L1 + {1 - ALPHA:.1f} (1 - SSIM 11x11 sigma 1.5)"
-                    + (" + perturbation (3 copies, no_grad)" if perturbation else ""),
-            "perturbation": perturbation, "fixed_batch": fixed_batch, "config": config,
+                    + (f" + {float(perturbation):g} x perturbation (3 copies, no_grad)" if perturbation else ""),
+            "perturbation": float(perturbation), "fixed_batch": fixed_batch, "config": config,
             "macs_per_pixel": macs_per_pixel(model), "params": w, "params_with_bias": wb,
             "validation_l1": val, "final_loss": history[-1][1] if history else None,
             "wall_s": round(time.time() - t_start, 3), "ms_per_step": round(1000 * loop_s / max(steps, 1), 2),
@@ -169,6 +172,10 @@ def parse(argv):
                    help="draw one batch and train on it every step (the smoke test's overfit check)")
     p.add_argument("--no-perturbation", action="store_true",
                    help="drop the perturbation term (the ablation)")
+    p.add_argument("--clip", type=float, default=0.0,
+                   help="clip the gradient's global norm to this (0: no clipping)")
+    p.add_argument("--perturbation-weight", type=float, default=1.0,
+                   help="weight of the perturbation term (1: the paper's Eq. 2)")
     a = p.parse_args(argv)
     checks = [("--steps", a.steps >= 1, "must be >= 1"), ("--batch", 1 <= a.batch <= 1024, "must be in [1, 1024]"),
               ("--crop", 1 <= a.crop <= 4096 and a.crop % CONFIGS[a.config].multiple == 0,
@@ -177,7 +184,10 @@ def parse(argv):
               ("--lr-min", math.isfinite(a.lr_min) and 0 <= a.lr_min <= a.lr, "must be in [0, --lr]"),
               ("--seed", 0 <= a.seed < 2 ** 63, "must be in [0, 2^63)"),
               ("--threads", 1 <= a.threads <= 256, "must be in [1, 256]"),
-              ("--log-every", a.log_every >= 0, "must be >= 0")]
+              ("--log-every", a.log_every >= 0, "must be >= 0"),
+              ("--clip", math.isfinite(a.clip) and a.clip >= 0, "must be >= 0"),
+              ("--perturbation-weight", math.isfinite(a.perturbation_weight) and 0 <= a.perturbation_weight <= 100,
+               "must be in [0, 100]")]
     for flag, ok, why in checks:
         if not ok:
             raise UsageError(f"{flag}: {why}")
@@ -190,8 +200,9 @@ def main(argv=None):
     try:
         a = parse(sys.argv[1:] if argv is None else argv)
         model, _, val, prov = train(a.data, a.config, a.steps, a.batch, a.crop, a.lr, a.lr_min,
-                                    a.seed, a.threads, a.log_every, not a.no_perturbation,
-                                    a.fixed_batch)
+                                    a.seed, a.threads, a.log_every,
+                                    0.0 if a.no_perturbation else a.perturbation_weight,
+                                    a.fixed_batch, clip=a.clip)
         prov["command"] = " ".join([PROGRAM] + (sys.argv[1:] if argv is None else list(argv)))
         nsm_export.write(a.out, model, DEFAULT_FEATURES, a.dtype, prov)
         print(f"wrote {a.out} ({a.dtype}, {prov['params_with_bias']} parameters, "

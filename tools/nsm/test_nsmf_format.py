@@ -12,7 +12,7 @@ import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-PROGRAM = os.path.join(ROOT, "build", "programs", "nsm_data")
+PROGRAM = os.path.join(os.environ.get("SHADOWLAB_BUILD", os.path.join(ROOT, "build")), "programs", "nsm_data")
 sys.path.insert(0, HERE)
 import nsmf_check  # noqa: E402
 
