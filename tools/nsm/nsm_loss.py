@@ -6,13 +6,17 @@ range 1: metric/ssim.h's constants) stands in for it as the term that rewards ma
 structure (edges, penumbra shape) rather than per-pixel values. The SSIM map covers the valid
 window centres only (no padding), and is averaged over centres whose pixel is covered.
 
-The whole loss (Datta et al. 2022, Eq. 2): L(x0, target) + sum_i L(x0, x_i), x_i the outputs
-on the 3 perturbed copies, evaluated under no_grad so gradients reach the weights through x0
-only.
+The whole loss (Datta et al. 2022, Eq. 2, with a cross-entropy term added to the first part):
+L(x0, target) + BCE(z0, target) + lambda sum_i L(x0, x_i), z0 the logits of x0 = sigmoid(z0),
+x_i the outputs on the 3 perturbed copies, evaluated under no_grad so gradients reach the
+weights through x0 only. The cross-entropy on the logits keeps a gradient where the sigmoid
+saturates: with L1 + SSIM alone, Adam drove nsm5's logits to +inf within ~20 steps on the
+mostly lit data set (output 1.0 everywhere, zero gradient from then on).
 """
 import math
 
 import torch
+import torch.nn.functional as F
 
 ALPHA = 0.9
 SSIM_WINDOW = 11
@@ -84,10 +88,13 @@ def nsm_loss(model, x, cov, target, perturbation=1.0):
     """perturbation: the weight of the perturbation term (0: none; 1: Eq. 2's).
     x [4, N, F, h, w] (copy 0, then the perturbed copies), cov [4, N, 1, h, w],
     target [N, 1, h, w]. Returns (loss, dict of float parts)."""
-    x0 = model(x[0])
-    main = pair_loss(x0, target, cov[0])
+    z0 = model.logits(x[0])
+    x0 = torch.sigmoid(z0)
+    bce = masked_mean(F.binary_cross_entropy_with_logits(z0, target, reduction="none"), cov[0])
+    main = pair_loss(x0, target, cov[0]) + bce
     loss = main
-    parts = {"main": float(main), "l1": float(masked_mean((x0 - target).abs(), cov[0]))}
+    parts = {"main": float(main), "bce": float(bce),
+             "l1": float(masked_mean((x0 - target).abs(), cov[0]))}
     if perturbation:
         with torch.no_grad():
             outs = [model(x[i]) for i in range(1, x.shape[0])]

@@ -105,6 +105,10 @@ class NsmNet(nn.Module):
         self.std.copy_(torch.as_tensor(std, dtype=torch.float32))
 
     def forward(self, x):
+        return torch.sigmoid(self.logits(x))
+
+    def logits(self, x):
+        """The head's output before the sigmoid (the loss's cross-entropy term reads it)."""
         L = self.config.levels
         m = self.config.multiple
         if x.shape[-1] % m or x.shape[-2] % m:
@@ -119,7 +123,7 @@ class NsmNet(nn.Module):
         for l in range(L - 2, 0, -1):
             u = getattr(self, f"dec{l}")(up2(u) + skips[l])
         u = self.dec0(up2(u))  # level 0: no skip
-        return self.head(u)
+        return self.head.conv1(u)
 
     def conv_order(self):
         """(name, conv) in the network order of the weights file."""
