@@ -50,6 +50,11 @@ int main(int argc, char** argv) {
             "time N forward passes after one untimed warm-up and print the median (default 0: "
             "one untimed pass)",
             repeats, 0, 1000);
+    bool layers = false;
+    add_switch(cl, "--layers",
+               "with --repeats: also print each pass's median time, multiply-adds and the bytes it "
+               "reads and stores (the supplemental's Tables 2/3)",
+               layers);
     add_switch(cl, "--dump",
                "also write every stored activation tensor to DIR/tensors/NAME.f32 ([y][x][c] "
                "fp32) with its shape in DIR/tensors.json (for the per-pass check against PyTorch)",
@@ -113,14 +118,30 @@ int main(int argc, char** argv) {
                 double(stats.activation_bytes) * 1e-6);
     if (repeats > 0) {
       std::vector<double> t;
+      std::vector<std::vector<double>> pass_ms(stats.passes.size());
       for (int i = 0; i < repeats; ++i) {
+        NsmForwardStats rs;
         const auto s = std::chrono::steady_clock::now();
-        nsm_forward(net, planes.data(), W, H, out.data(), precision);
+        nsm_forward(net, planes.data(), W, H, out.data(), precision, &rs);
         t.push_back(ms_since(s));
+        for (size_t p = 0; p < rs.passes.size(); ++p) pass_ms[p].push_back(rs.passes[p].ms);
       }
       const Stat st = stat_of(t);
       std::printf("forward: median %.2f ms  min %.2f  max %.2f  (%d repeats)  %.1f GMAC/s\n",
                   st.median, st.min, st.max, repeats, stats.macs * 1e-6 / st.median);
+      if (layers) {
+        std::printf("%-10s %5s %9s %9s %9s %9s %8s %8s\n", "pass", "level", "ms", "GMAC",
+                    "read MB", "store MB", "GMAC/s", "GB/s");
+        for (size_t p = 0; p < stats.passes.size(); ++p) {
+          const NsmPassStats& ps = stats.passes[p];
+          const double ms = median(pass_ms[p]);
+          const double mb = double(ps.bytes_read + ps.bytes_written) * 1e-6;
+          std::printf("%-10s %5d %9.2f %9.3f %9.1f %9.1f %8.1f %8.1f\n", ps.name.c_str(), ps.level,
+                      ms, ps.macs * 1e-9, double(ps.bytes_read) * 1e-6,
+                      double(ps.bytes_written) * 1e-6, ms > 0 ? ps.macs * 1e-6 / ms : 0.0,
+                      ms > 0 ? mb / ms : 0.0);
+        }
+      }
     }
     std::string bytes(out.size() * 4, '\0');
     std::memcpy(bytes.data(), out.data(), bytes.size());

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <cstring>
 
 #include "core/error.h"
 #include "core/isa.h"
 #include "core/parallel.h"
+#include "core/timer.h"
 #include "techniques/nsm/nsm_conv.h"
 
 namespace shadowlab {
@@ -268,57 +270,95 @@ void nsm_forward(const NsmNetwork& net, const float* planes, int width, int heig
   const int L = a.levels, m = 1 << (L - 1);
   const int pw = (width + m - 1) / m * m, ph = (height + m - 1) / m * m;
   uint64_t bytes = 0;
+  auto tensor_bytes = [](const NsmTensor& t) { return uint64_t(t.w) * t.h * t.c * 4; };
   auto stored = [&](NsmTensor& t, const std::string& name) {
     nsm_quantize(t, precision);
-    bytes += uint64_t(t.w) * t.h * t.c * 4;
+    bytes += tensor_bytes(t);
     if (sink) sink(name, t);
   };
+  std::vector<NsmPassStats> passes;
+  // Times one pass; its MACs from the convolutions it runs at `pixels` output pixels each.
+  auto timed = [&](const std::string& name, int level, std::initializer_list<size_t> convs,
+                   double pixels, auto&& run) {
+    const uint64_t before = bytes;
+    const auto t0 = std::chrono::steady_clock::now();
+    NsmPassStats p;
+    p.bytes_read = run();
+    p.ms = ms_since(t0);
+    p.name = name;
+    p.level = level;
+    for (size_t c : convs) {
+      const NsmPackedConv& k = net.convs[c];
+      p.macs += double(k.k) * k.k * k.ic * k.oc * pixels;
+    }
+    p.bytes_written = bytes - before;
+    passes.push_back(p);
+  };
+  auto pixels_at = [&](int level) { return double(pw >> level) * double(ph >> level); };
   NsmTensor x;
-  nsm_input(net, planes, width, height, pw, ph, x);
-  stored(x, "input");
+  timed("input", 0, {}, 0, [&] {
+    nsm_input(net, planes, width, height, pw, ph, x);
+    stored(x, "input");
+    return uint64_t(width) * height * a.features * 4;
+  });
   // Encoder: level 0 keeps no skip (decoder 0 has none); levels 1..L−2 keep e_l.
   std::vector<NsmTensor> skips(size_t(L) - 1);
   size_t ci = 0;
   for (int l = 0; l <= L - 2; ++l) {
-    NsmTensor pooled;
-    nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], l == 0 ? nullptr : &skips[size_t(l)],
-                  &pooled);
+    timed("enc" + std::to_string(l), l, {ci, ci + 1}, pixels_at(l), [&] {
+      NsmTensor pooled;
+      nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], l == 0 ? nullptr : &skips[size_t(l)],
+                    &pooled);
+      if (l > 0) stored(skips[size_t(l)], "enc" + std::to_string(l));
+      stored(pooled, "pool" + std::to_string(l));
+      const uint64_t read = tensor_bytes(x);
+      x = std::move(pooled);
+      return read;
+    });
     ci += 2;
-    if (l > 0) stored(skips[size_t(l)], "enc" + std::to_string(l));
-    stored(pooled, "pool" + std::to_string(l));
-    x = std::move(pooled);
   }
   NsmTensor u;
-  nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], &u, nullptr);
+  timed("mid", L - 1, {ci, ci + 1}, pixels_at(L - 1), [&] {
+    nsm_conv_pair(x, net.convs[ci], net.convs[ci + 1], &u, nullptr);
+    stored(u, "mid");
+    return tensor_bytes(x);
+  });
   ci += 2;
-  stored(u, "mid");
   for (int l = L - 2; l >= 1; --l) {
-    NsmTensor next;
-    nsm_decoder_level(u, &skips[size_t(l)], net.convs[ci], net.convs[ci + 1], next);
+    timed("dec" + std::to_string(l), l, {ci, ci + 1}, pixels_at(l), [&] {
+      NsmTensor next;
+      nsm_decoder_level(u, &skips[size_t(l)], net.convs[ci], net.convs[ci + 1], next);
+      stored(next, "dec" + std::to_string(l));
+      const uint64_t read = tensor_bytes(u) + tensor_bytes(skips[size_t(l)]);
+      u = std::move(next);
+      return read;
+    });
     ci += 2;
-    stored(next, "dec" + std::to_string(l));
-    u = std::move(next);
   }
   // Decoder 0 and the head, cropped to width × height.
   const NsmConvKernels& k = nsm_conv_kernels(process_isa());
   const NsmPackedConv &c3 = net.convs[ci], &c1 = net.convs[ci + 1], &head = net.convs[ci + 2];
-  parallel_for_chunks(size_t(height), kNsmBandRows, [&](size_t y0, size_t y1) {
-    nsm_decoder_band(k, u, nullptr, c3, c1, y0, y1, [&](size_t y, const float* row) {
-      thread_local std::vector<float> logits;
-      float* lg = nsm_grow(logits, size_t(pw));
-      NsmConvRowArgs b = nsm_args(head, width, lg, false);
-      b.rows[0] = row;
-      k.row(b);
-      float* o = out + y * size_t(width);
-      for (int xx = 0; xx < width; ++xx) o[xx] = nsm_sigmoid(lg[xx]);
+  timed("dec0+head", 0, {ci, ci + 1, ci + 2}, pixels_at(0), [&] {
+    parallel_for_chunks(size_t(height), kNsmBandRows, [&](size_t y0, size_t y1) {
+      nsm_decoder_band(k, u, nullptr, c3, c1, y0, y1, [&](size_t y, const float* row) {
+        thread_local std::vector<float> logits;
+        float* lg = nsm_grow(logits, size_t(pw));
+        NsmConvRowArgs b = nsm_args(head, width, lg, false);
+        b.rows[0] = row;
+        k.row(b);
+        float* o = out + y * size_t(width);
+        for (int xx = 0; xx < width; ++xx) o[xx] = nsm_sigmoid(lg[xx]);
+      });
     });
+    bytes += uint64_t(width) * height * 4;
+    return tensor_bytes(u);
   });
-  bytes += uint64_t(width) * height * 4;
   if (stats) {
     stats->padded_width = pw;
     stats->padded_height = ph;
     stats->macs = nsm_macs_per_pixel(a) * pw * ph;
     stats->activation_bytes = bytes;
+    stats->passes = std::move(passes);
   }
 }
 

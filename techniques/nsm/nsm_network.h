@@ -60,10 +60,22 @@ struct NsmTensor {
   }
 };
 
+// One pass of the forward: "input", "enc<l>" (level l's conv pair and its pool), "mid",
+// "dec<l>" (l ≥ 1), "dec0+head". Bytes at 4 a value: what it reads of stored tensors and what
+// it stores.
+struct NsmPassStats {
+  std::string name;
+  int level = 0;
+  double ms = 0;
+  double macs = 0;
+  uint64_t bytes_read = 0, bytes_written = 0;
+};
+
 struct NsmForwardStats {
   int padded_width = 0, padded_height = 0;
   double macs = 0;                // multiply-adds of the convolutions
   uint64_t activation_bytes = 0;  // the tensors that reach memory, at 4 bytes a value
+  std::vector<NsmPassStats> passes;  // in execution order; their ms are wall times
 };
 
 // Receives every tensor that reaches memory, as stored, under its name: "input", "enc<l>" (the

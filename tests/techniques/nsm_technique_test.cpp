@@ -182,6 +182,33 @@ TEST(NsmTechnique, WorkCountsFollowTheArchitecture) {
   std::filesystem::remove(path);
 }
 
+// The forward's per-pass figures (nsm_forward --layers) add up to its totals, pass by pass in
+// the network's order: input, enc0, enc1, mid, dec1, dec0+head for tiny's 3 levels.
+TEST(NsmTechnique, ForwardPassesAddUpToTheTotals) {
+  const NsmwDraft d = test::nsmw_draft(tiny(), 9);
+  const std::string path = save(d, "passes.nsmw");
+  const NsmNetwork net = nsm_network(read_nsm_weights(path));
+  const int w = 40, h = 24;
+  std::vector<float> planes(size_t(w) * h * 4, 0.5f), out(size_t(w) * h);
+  NsmForwardStats st;
+  nsm_forward(net, planes.data(), w, h, out.data(), NsmPrecision::f32, &st);
+  std::vector<std::string> names;
+  double macs = 0;
+  uint64_t written = 0;
+  for (const NsmPassStats& p : st.passes) {
+    names.push_back(p.name);
+    macs += p.macs;
+    written += p.bytes_written;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"input", "enc0", "enc1", "mid", "dec1", "dec0+head"}));
+  EXPECT_EQ(macs, st.macs);
+  EXPECT_EQ(written, st.activation_bytes);
+  // enc1 reads pool0: 20 × 12 pixels of C0 = 4 channels; mid runs 9·8·16 + 16·8 MACs at 10 × 6.
+  EXPECT_EQ(st.passes[2].bytes_read, uint64_t(20 * 12 * 4 * 4));
+  EXPECT_EQ(st.passes[3].macs, double(10 * 6) * (9 * 8 * 16 + 16 * 8));
+  std::filesystem::remove(path);
+}
+
 TEST(NsmTechnique, SameBytesAt1And2And7Threads) {
   const NsmwDraft d = test::nsmw_draft(tiny(), 7);
   const std::string path = save(d, "threads.nsmw");
