@@ -102,6 +102,7 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
           clip=0.0):
     """Returns (model, history [(step, loss, parts)], validation L1, provenance dict)."""
     setup_torch(seed, threads)
+    commit = git_commit()  # the code that trains, read before the tree can change
     t_start = time.time()
     ds = dataset or Dataset(data)
     train_frames = ds.frames("train")
@@ -142,9 +143,9 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
     w, wb = param_counts(model)
     prov = {"program": PROGRAM, "dataset_hash": ds.dataset_hash, "dataset": os.path.abspath(data),
             "train_frames": len(train_frames), "val_frames": len(val_frames),
-            "commit": git_commit(), "seed": seed, "steps": steps, "batch": batch, "crop": crop,
+            "commit": commit, "seed": seed, "steps": steps, "batch": batch, "crop": crop,
             "lr": lr, "lr_min": lr_min, "clip": clip, "schedule": "cosine", "optimizer": "Adam(0.9,0.999)",
-            "loss": f"{ALPHA} L1 + {1 - ALPHA:.1f} (1 - SSIM 11x11 sigma 1.5)"
+            "loss": f"{ALPHA} L1 + {1 - ALPHA:.1f} (1 - SSIM 11x11 sigma 1.5) + BCE(logits)"
                     + (f" + {float(perturbation):g} x perturbation (3 copies, no_grad)" if perturbation else ""),
             "perturbation": float(perturbation), "fixed_batch": fixed_batch, "config": config,
             "macs_per_pixel": macs_per_pixel(model), "params": w, "params_with_bias": wb,
