@@ -131,6 +131,17 @@ def main():
         print(f"{name:42s} median {med:9.2f} ms  min {lo:9.2f}  max {hi:9.2f}  {macs * 1e-6 / med:7.1f} GMAC/s")
     best = min(results, key=lambda k: results[k][0])
     print(f"fastest: {best}, {results[best][0]:.2f} ms")
+    # A STREAM-like copy at the same thread count: 256 MiB copied, read + write bytes per second
+    # (the memory bandwidth a memory-bound forward could reach).
+    src = torch.ones(64 << 20)
+    dst = torch.empty_like(src)
+    times = []
+    for _ in range(a.warmup + a.repeats):
+        t0 = time.perf_counter()
+        dst.copy_(src)
+        times.append(time.perf_counter() - t0)
+    gbs = 2 * src.numel() * 4 / statistics.median(times[a.warmup:]) * 1e-9
+    print(f"stream copy (torch copy_ of 256 MiB, {a.threads} threads): {gbs:.1f} GB/s")
 
 
 if __name__ == "__main__":
