@@ -13,6 +13,9 @@ import torch.nn.functional as F
 
 # The network's default input, in this order (the 4 pruned features of the paper's Table 1).
 DEFAULT_FEATURES = ("z_over_zf", "z_minus_zf", "c_e_r", "d")
+# Every candidate feature nsm_data can store (techniques/nsm/nsm_features.h), in its order.
+CANDIDATE_FEATURES = ("d", "z", "z_f", "c_e", "c_c", "n_x", "n_y", "n_z", "z_minus_zf", "z_over_zf",
+                      "cc_over_d", "c_e_r")
 HEAD_WIDTH = 16
 
 

@@ -12,6 +12,7 @@ thread count. Bits repeat per machine kind and thread count (oneDNN picks its ke
 so both are in the provenance.
 """
 import argparse
+import dataclasses
 import math
 import os
 import platform
@@ -28,7 +29,7 @@ sys.path.insert(0, HERE)
 import nsm_export  # noqa: E402
 from nsm_data import DataError, Dataset, Sampler, check_frames, feature_stats, loss_mask  # noqa: E402
 from nsm_loss import ALPHA, nsm_loss  # noqa: E402
-from nsm_model import CONFIGS, DEFAULT_FEATURES, build, macs_per_pixel, param_counts  # noqa: E402
+from nsm_model import CANDIDATE_FEATURES, CONFIGS, DEFAULT_FEATURES, build, macs_per_pixel, param_counts  # noqa: E402
 
 PROGRAM = "nsm_train"
 
@@ -99,8 +100,9 @@ def cpu_model():
 
 def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e-5, seed=1,
           threads=2, log_every=50, perturbation=True, fixed_batch=False, log=print, dataset=None,
-          clip=0.0):
-    """Returns (model, history [(step, loss, parts)], validation L1, provenance dict)."""
+          clip=0.0, features=DEFAULT_FEATURES):
+    """Returns (model, history [(step, loss, parts)], validation L1, provenance dict).
+    `features`: the network's inputs, in order (names of techniques/nsm/nsm_features.h)."""
     setup_torch(seed, threads)
     commit = git_commit()  # the code that trains, read before the tree can change
     t_start = time.time()
@@ -109,11 +111,14 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
     val_frames = ds.frames("val")
     if not train_frames:
         raise DataError(f"{os.path.join(data, 'manifest.json')}: the train split is empty")
-    check_frames(train_frames + val_frames)
-    mean, std = feature_stats(train_frames)
-    model = build(config)  # after manual_seed: the initial weights follow the seed
+    features = list(features)
+    check_frames(train_frames + val_frames, features)
+    mean, std = feature_stats(train_frames, features)
+    cfg = CONFIGS[config] if isinstance(config, str) else config
+    cfg = dataclasses.replace(cfg, features=len(features))
+    model = build(cfg)  # after manual_seed: the initial weights follow the seed
     model.set_standardization(mean, std)
-    sampler = Sampler(train_frames, crop, model.config.multiple, seed)
+    sampler = Sampler(train_frames, crop, model.config.multiple, seed, features)
     opt = torch.optim.Adam(model.parameters(), lr=lr, betas=(0.9, 0.999))
     history = []
     t_loop = time.time()
@@ -136,7 +141,7 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
                 f"lr {cosine_lr(step, steps, lr, lr_min):.2e} {ms:.0f} ms/step")
     loop_s = time.time() - t_loop
     model.eval()
-    val = validation_l1(model, val_frames)
+    val = validation_l1(model, val_frames, features)
     if log_every:
         log(f"validation L1 {val if val is None else f'{val:.6f}'} over {len(val_frames)} frames")
     cpu, isa = cpu_model()
@@ -147,7 +152,8 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
             "lr": lr, "lr_min": lr_min, "clip": clip, "schedule": "cosine", "optimizer": "Adam(0.9,0.999)",
             "loss": f"{ALPHA} L1 + {1 - ALPHA:.1f} (1 - SSIM 11x11 sigma 1.5) + BCE(logits)"
                     + (f" + {float(perturbation):g} x perturbation (3 copies, no_grad)" if perturbation else ""),
-            "perturbation": float(perturbation), "fixed_batch": fixed_batch, "config": config,
+            "perturbation": float(perturbation), "fixed_batch": fixed_batch,
+            "config": config if isinstance(config, str) else str(config), "features": features,
             "macs_per_pixel": macs_per_pixel(model), "params": w, "params_with_bias": wb,
             "validation_l1": val, "final_loss": history[-1][1] if history else None,
             "wall_s": round(time.time() - t_start, 3), "ms_per_step": round(1000 * loop_s / max(steps, 1), 2),
@@ -173,6 +179,8 @@ def parse(argv):
                    help="draw one batch and train on it every step (the smoke test's overfit check)")
     p.add_argument("--no-perturbation", action="store_true",
                    help="drop the perturbation term (the ablation)")
+    p.add_argument("--features", default=",".join(DEFAULT_FEATURES),
+                   help="the network's inputs, comma-separated (default: the pruned four)")
     p.add_argument("--clip", type=float, default=0.0,
                    help="clip the gradient's global norm to this (0: no clipping)")
     p.add_argument("--perturbation-weight", type=float, default=1.0,
@@ -187,6 +195,9 @@ def parse(argv):
               ("--threads", 1 <= a.threads <= 256, "must be in [1, 256]"),
               ("--log-every", a.log_every >= 0, "must be >= 0"),
               ("--clip", math.isfinite(a.clip) and a.clip >= 0, "must be >= 0"),
+              ("--features", bool(a.features) and all(f in CANDIDATE_FEATURES for f in a.features.split(","))
+               and len(set(a.features.split(","))) == len(a.features.split(",")),
+               f"must be distinct names of {', '.join(CANDIDATE_FEATURES)}"),
               ("--perturbation-weight", math.isfinite(a.perturbation_weight) and 0 <= a.perturbation_weight <= 100,
                "must be in [0, 100]")]
     for flag, ok, why in checks:
@@ -203,9 +214,9 @@ def main(argv=None):
         model, _, val, prov = train(a.data, a.config, a.steps, a.batch, a.crop, a.lr, a.lr_min,
                                     a.seed, a.threads, a.log_every,
                                     0.0 if a.no_perturbation else a.perturbation_weight,
-                                    a.fixed_batch, clip=a.clip)
+                                    a.fixed_batch, clip=a.clip, features=a.features.split(","))
         prov["command"] = " ".join([PROGRAM] + (sys.argv[1:] if argv is None else list(argv)))
-        nsm_export.write(a.out, model, DEFAULT_FEATURES, a.dtype, prov)
+        nsm_export.write(a.out, model, a.features.split(","), a.dtype, prov)
         print(f"wrote {a.out} ({a.dtype}, {prov['params_with_bias']} parameters, "
               f"validation L1 {val}, {prov['wall_s']} s)")
         return 0

@@ -67,10 +67,23 @@ def test_command_line_writes_weights_and_refuses_bad_input(dataset_dir, tmp_path
            (["--steps", "0"], "nsm_train: --steps: "),
            (["--lr-min", "1"], "nsm_train: --lr-min: "),
            (["--data", str(tmp_path / "none")], "nsm_train: " + str(tmp_path / "none")),
-           (["--out", str(tmp_path / "no" / "w.nsmw")], "nsm_train: --out: ")]
+           (["--out", str(tmp_path / "no" / "w.nsmw")], "nsm_train: --out: "),
+           (["--features", "d,albedo"], "nsm_train: --features: "),
+           (["--features", "d,d"], "nsm_train: --features: ")]
     for extra, prefix in bad:
         args = ["--data", dataset_dir, "--out", out, "--config", "tiny", "--crop", "32",
                 "--steps", "1", "--threads", "1"] + extra
         assert nsm_train.main(args) == 2
         err = capsys.readouterr().err
         assert err.startswith(prefix) and err.count("\n") == 1, err
+
+
+def test_a_feature_subset_trains_and_is_named_in_the_weights(dataset_dir, tmp_path):
+    out = str(tmp_path / "sub.nsmw")
+    rc = nsm_train.main(["--data", dataset_dir, "--out", out, "--config", "tiny", "--steps", "2",
+                         "--batch", "2", "--crop", "32", "--threads", "1", "--log-every", "0",
+                         "--features", "d,c_e_r"])
+    assert rc == 0
+    h, tensors = nsm_export.read(out)
+    assert h["features"] == ["d", "c_e_r"] and len(h["mean"]) == 2
+    assert tensors["enc0.conv3.weight"].shape[1] == 2  # the first conv reads 2 planes
