@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Feature selection by sensitivity (the supplemental's Table 1, docs/results/nsm.md): trains a
-network on every candidate feature, measures each input's sensitivity -- how much the validation
-L1 rises when that input is held at its training mean (0 after standardization) -- prunes the
-inputs whose sensitivity is below --prune (1.5 % of the validation L1, the paper's rule), and
-trains again on the kept ones. Also trains the paper's smallest row (--small, 2 features).
-Prints one table row per training: features, validation L1.
+network on every candidate feature and measures each input's sensitivity -- how much the
+validation L1 rises when that input is held at its training mean (0 after standardization).
+Then, for each size k of --sizes, trains on the k - 1 most sensitive inputs plus c_e_r (the only
+input that carries the emitter's size, so always kept), on the paper's pruned four
+(DEFAULT_FEATURES) and on --small. The pruned set is the smallest of the ranked sets whose
+validation L1 is within --prune (1.5 %, the paper's rule) of the all-candidates network's.
+Prints one row per training: features, validation L1.
 
   python3 tools/nsm/nsm_select.py --data DATA [--config nsm3 --steps 1000] [--json OUT]
 """
@@ -16,7 +18,7 @@ import numpy as np
 import torch
 
 import nsm_train
-from nsm_model import CANDIDATE_FEATURES
+from nsm_model import CANDIDATE_FEATURES, DEFAULT_FEATURES
 
 # c_e is left out of the candidates: c_e_r = c_e + r_e carries it together with the emitter
 # size, and with both the network could read r_e off their difference, which the paper's
@@ -46,6 +48,7 @@ def main(argv=None):
     p.add_argument("--steps", type=int, default=1000)
     p.add_argument("--prune", type=float, default=0.015)
     p.add_argument("--small", default="z_minus_zf,c_e_r")
+    p.add_argument("--sizes", default="6,4", help="sizes of the ranked sets to train")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--json")
@@ -67,9 +70,17 @@ def main(argv=None):
     print("sensitivity (relative rise of the validation L1 with the input held at its mean):")
     for name, v in sorted(sens.items(), key=lambda kv: -kv[1]):
         print(f"  {name:11s} {100 * v:+7.2f} %{'' if v >= a.prune else '  pruned'}")
-    kept = [f for f in CANDIDATES if sens[f] >= a.prune]
-    run(kept)
+    ranked = [f for f, _ in sorted(sens.items(), key=lambda kv: -kv[1]) if f != "c_e_r"]
+    within = None
+    for k in sorted((int(v) for v in a.sizes.split(",")), reverse=True):
+        features = ranked[:k - 1] + ["c_e_r"]
+        run(features)
+        if rows[-1]["validation_l1"] <= (1 + a.prune) * rows[0]["validation_l1"]:
+            within = features
+    run(list(DEFAULT_FEATURES))
     run(a.small.split(","))
+    print(f"pruned set (smallest ranked set within {100 * a.prune:g} %): "
+          f"{', '.join(within) if within else 'none'}")
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"config": a.config, "steps": a.steps, "prune": a.prune,
