@@ -71,34 +71,37 @@ def centre_mask(m):
 def pair_loss(y, t, mask, alpha=ALPHA):
     """alpha * masked L1 + (1 - alpha) * (1 - masked mean SSIM)."""
     l1 = masked_mean((y - t).abs(), mask)
+    if alpha == 1.0:
+        return l1
     s = masked_mean(ssim_map(y, t), centre_mask(mask))
     return alpha * l1 + (1.0 - alpha) * (1.0 - s)
 
 
-def perturbation_term(x0, perturbed, cov0, covs):
+def perturbation_term(x0, perturbed, cov0, covs, alpha=ALPHA):
     """sum_i L(x0, x_i) over the perturbed outputs (given as constants), each masked by the
     pixels covered in both copies."""
     total = x0.new_zeros(())
     for xi, ci in zip(perturbed, covs):
-        total = total + pair_loss(x0, xi, cov0 * ci)
+        total = total + pair_loss(x0, xi, cov0 * ci, alpha)
     return total
 
 
-def nsm_loss(model, x, cov, target, perturbation=1.0):
-    """perturbation: the weight of the perturbation term (0: none; 1: Eq. 2's).
+def nsm_loss(model, x, cov, target, perturbation=1.0, alpha=ALPHA):
+    """perturbation: the weight of the perturbation term (0: none; 1: Eq. 2's); alpha: the L1
+    share of L (1: no structural term).
     x [4, N, F, h, w] (copy 0, then the perturbed copies), cov [4, N, 1, h, w],
     target [N, 1, h, w]. Returns (loss, dict of float parts)."""
     z0 = model.logits(x[0])
     x0 = torch.sigmoid(z0)
     bce = masked_mean(F.binary_cross_entropy_with_logits(z0, target, reduction="none"), cov[0])
-    main = pair_loss(x0, target, cov[0]) + bce
+    main = pair_loss(x0, target, cov[0], alpha) + bce
     loss = main
     parts = {"main": float(main), "bce": float(bce),
              "l1": float(masked_mean((x0 - target).abs(), cov[0]))}
     if perturbation:
         with torch.no_grad():
             outs = [model(x[i]) for i in range(1, x.shape[0])]
-        pert = perturbation_term(x0, outs, cov[0], [cov[i] for i in range(1, x.shape[0])])
+        pert = perturbation_term(x0, outs, cov[0], [cov[i] for i in range(1, x.shape[0])], alpha)
         loss = loss + float(perturbation) * pert
         parts["perturbation"] = float(pert)
     return loss, parts

@@ -39,7 +39,9 @@ class NetConfig:
 
 CONFIGS = {
     "nsm3": NetConfig(3, (16, 32), 64),
+    "nsm3e": NetConfig(3, (16, 48), 128),
     "nsm5": NetConfig(5, (16, 32, 64, 128), 256),
+    "nsm7": NetConfig(7, (16, 32, 64, 128, 256, 512), 1024),
     "nsm7e": NetConfig(7, (16, 32, 64, 96, 128, 192), 256),
     "tiny": NetConfig(3, (4, 8), 16),
 }

@@ -100,7 +100,7 @@ def cpu_model():
 
 def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e-5, seed=1,
           threads=2, log_every=50, perturbation=True, fixed_batch=False, log=print, dataset=None,
-          clip=0.0, features=DEFAULT_FEATURES):
+          clip=0.0, features=DEFAULT_FEATURES, structural=1.0 - ALPHA):
     """Returns (model, history [(step, loss, parts)], validation L1, provenance dict).
     `features`: the network's inputs, in order (names of techniques/nsm/nsm_features.h)."""
     setup_torch(seed, threads)
@@ -127,7 +127,7 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
             g["lr"] = cosine_lr(step, steps, lr, lr_min)
         if step == 0 or not fixed_batch:
             x, cov, t = (torch.from_numpy(a) for a in sampler.batch(batch))
-        loss, parts = nsm_loss(model, x, cov, t, perturbation)
+        loss, parts = nsm_loss(model, x, cov, t, perturbation, 1.0 - structural)
         opt.zero_grad(set_to_none=True)
         loss.backward()
         if clip > 0:
@@ -150,7 +150,8 @@ def train(data, config="nsm5", steps=2500, batch=8, crop=128, lr=1e-3, lr_min=1e
             "train_frames": len(train_frames), "val_frames": len(val_frames),
             "commit": commit, "seed": seed, "steps": steps, "batch": batch, "crop": crop,
             "lr": lr, "lr_min": lr_min, "clip": clip, "schedule": "cosine", "optimizer": "Adam(0.9,0.999)",
-            "loss": f"{ALPHA} L1 + {1 - ALPHA:.1f} (1 - SSIM 11x11 sigma 1.5) + BCE(logits)"
+            "loss": (f"{1 - structural:g} L1 + {structural:g} (1 - SSIM 11x11 sigma 1.5) + BCE(logits)"
+                     if structural else "L1 + BCE(logits)")
                     + (f" + {float(perturbation):g} x perturbation (3 copies, no_grad)" if perturbation else ""),
             "perturbation": float(perturbation), "fixed_batch": fixed_batch,
             "config": config if isinstance(config, str) else str(config), "features": features,
@@ -183,6 +184,8 @@ def parse(argv):
                    help="the network's inputs, comma-separated (default: the pruned four)")
     p.add_argument("--clip", type=float, default=0.0,
                    help="clip the gradient's global norm to this (0: no clipping)")
+    p.add_argument("--structural-weight", type=float, default=1.0 - ALPHA,
+                   help="the SSIM term's share of L, 1 - alpha (default 0.1; 0: L1 alone)")
     p.add_argument("--perturbation-weight", type=float, default=1.0,
                    help="weight of the perturbation term (1: the paper's Eq. 2)")
     a = p.parse_args(argv)
@@ -195,6 +198,7 @@ def parse(argv):
               ("--threads", 1 <= a.threads <= 256, "must be in [1, 256]"),
               ("--log-every", a.log_every >= 0, "must be >= 0"),
               ("--clip", math.isfinite(a.clip) and a.clip >= 0, "must be >= 0"),
+              ("--structural-weight", 0 <= a.structural_weight < 1, "must be in [0, 1)"),
               ("--features", bool(a.features) and all(f in CANDIDATE_FEATURES for f in a.features.split(","))
                and len(set(a.features.split(","))) == len(a.features.split(",")),
                f"must be distinct names of {', '.join(CANDIDATE_FEATURES)}"),
@@ -214,7 +218,8 @@ def main(argv=None):
         model, _, val, prov = train(a.data, a.config, a.steps, a.batch, a.crop, a.lr, a.lr_min,
                                     a.seed, a.threads, a.log_every,
                                     0.0 if a.no_perturbation else a.perturbation_weight,
-                                    a.fixed_batch, clip=a.clip, features=a.features.split(","))
+                                    a.fixed_batch, clip=a.clip, features=a.features.split(","),
+                                    structural=a.structural_weight)
         prov["command"] = " ".join([PROGRAM] + (sys.argv[1:] if argv is None else list(argv)))
         nsm_export.write(a.out, model, a.features.split(","), a.dtype, prov)
         print(f"wrote {a.out} ({a.dtype}, {prov['params_with_bias']} parameters, "

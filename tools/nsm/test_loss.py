@@ -56,6 +56,22 @@ def test_pair_loss_weights_and_mask():
     assert float(nsm_loss.pair_loss(y, t, m0)) == pytest.approx(0.1, rel=1e-6)  # nothing covered
 
 
+
+def test_without_the_structural_term_the_loss_is_the_masked_l1_plus_cross_entropy():
+    net = build("tiny", seed=0)
+    x, cov, t = batch(seed=3)
+    with torch.no_grad():
+        z = net.logits(x[0]).double().numpy()
+    y = 1 / (1 + np.exp(-z))
+    tt, m = t.double().numpy(), cov[0].double().numpy()
+    l1 = (np.abs(y - tt) * m).sum() / m.sum()
+    bce = ((np.logaddexp(0, z) - tt * z) * m).sum() / m.sum()  # BCE with logits, by hand
+    loss, parts = nsm_loss.nsm_loss(net, x, cov, t, perturbation=0.0, alpha=1.0)
+    assert float(loss) == pytest.approx(l1 + bce, rel=1e-5)
+    with_ssim, _ = nsm_loss.nsm_loss(net, x, cov, t, perturbation=0.0)
+    assert abs(float(with_ssim) - (0.9 * l1 + bce)) > 1e-3  # the default does weigh SSIM in
+
+
 def batch(seed=0, identical=False):
     g = torch.Generator().manual_seed(seed)
     x = torch.rand(4, 2, 4, 16, 16, generator=g)
