@@ -1,0 +1,258 @@
+#!/usr/bin/env python3
+"""Mutation testing for shadowlab's C++ (docs/mutation.md).
+
+Generates mutants of the sources of one folder by text rules (tools/mutate/mutants.py), draws a
+seeded sample, and for each one: writes the mutant, rebuilds the folder's test binary in a
+build directory of its own, runs the binary (first failure stops it), and restores the source.
+A mutant is killed when a test fails or the binary exceeds its time limit, stillborn when it
+does not compile, and survives otherwise. Results go to a state file one line per mutant, so an
+interrupted run resumes where it stopped; `--report` prints the per-folder table and every
+survivor's diff, less the mutants listed as equivalent in tools/mutate/equivalent.txt.
+
+  cmake -S . -B build-mut -DCMAKE_BUILD_TYPE=Release -DSHADOWLAB_UNITY=OFF
+  python3 tools/mutate/mutate.py --build build-mut --folder metric --sample 60
+  python3 tools/mutate/mutate.py --build build-mut --report
+"""
+import argparse
+import json
+import os
+import random
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mutants import generate  # noqa: E402
+
+PROGRAM = "mutate"
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+SOURCE_EXT = (".cpp", ".h", ".inl")
+# The test binary that is each folder's specification (tests/CMakeLists.txt).
+FOLDER_TESTS = {"core": "test_core", "scenes": "test_scenes", "raster": "test_raster",
+                "raytrace": "test_raytrace", "metric": "test_metric",
+                "techniques": "test_techniques", "util": "test_util", "lab": "test_lab"}
+EQUIVALENT_FILE = os.path.join(ROOT, "tools", "mutate", "equivalent.txt")
+
+
+def fail(flag, reason):
+    print(f"{PROGRAM}: {flag}: {reason}", file=sys.stderr)
+    sys.exit(2)
+
+
+def folder_files(folder):
+    out = []
+    for dirpath, _, names in os.walk(os.path.join(ROOT, folder)):
+        for n in names:
+            if n.endswith(SOURCE_EXT):
+                out.append(os.path.relpath(os.path.join(dirpath, n), ROOT))
+    return sorted(out)
+
+
+def all_mutants(folder, files=None):
+    out = []
+    for rel in files or folder_files(folder):
+        with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+            out += generate(rel, f.read())
+    return out
+
+
+def sample(mutants, n, seed):
+    order = list(mutants)
+    random.Random(seed).shuffle(order)
+    return order if n is None else order[:n]
+
+
+def load_state(path):
+    done = {}
+    if os.path.exists(path):
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                line = line.strip()
+                if line:
+                    r = json.loads(line)
+                    done[r["id"]] = r
+    return done
+
+
+def load_equivalent():
+    eq = {}
+    if os.path.exists(EQUIVALENT_FILE):
+        with open(EQUIVALENT_FILE, encoding="utf-8") as f:
+            for line in f:
+                line = line.strip()
+                if line and not line.startswith("#"):
+                    mid, _, reason = line.partition(" ")
+                    eq[mid] = reason.strip()
+    return eq
+
+
+def build(build_dir, target, log):
+    r = subprocess.run(["cmake", "--build", build_dir, "--target", target, "-j2"],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if log and r.returncode:
+        log.write(r.stdout[-4000:])
+    return r.returncode == 0
+
+
+def run_tests(build_dir, target, timeout, gtest_filter):
+    exe = os.path.join(build_dir, "tests", target)
+    cmd = [exe, "--gtest_fail_fast", "--gtest_brief=1"]
+    if gtest_filter:
+        cmd.append("--gtest_filter=" + gtest_filter)
+    t0 = time.monotonic()
+    try:
+        r = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=timeout)
+        rc, out = r.returncode, r.stdout
+    except subprocess.TimeoutExpired as e:
+        rc, out = "timeout", (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+    failed = [l.split("]", 1)[1].strip() for l in out.splitlines() if l.startswith("[  FAILED  ]")]
+    return rc, failed[:1], time.monotonic() - t0
+
+
+def describe(m, text):
+    """One line before and after the edit."""
+    ls = text.rfind("\n", 0, m.start) + 1
+    le = text.find("\n", m.end)
+    le = len(text) if le < 0 else le
+    before = text[ls:le]
+    after = text[ls:m.start] + m.replacement + text[m.end:le]
+    return before.strip(), after.strip()
+
+
+def run(a):
+    if not os.path.isfile(os.path.join(a.build, "CMakeCache.txt")):
+        fail("--build", f"'{a.build}' is not a configured CMake build folder")
+    with open(os.path.join(a.build, "CMakeCache.txt"), encoding="utf-8", errors="replace") as f:
+        if "SHADOWLAB_UNITY:BOOL=ON" in f.read():
+            fail("--build", f"'{a.build}' compiles unity batches (each mutant would rebuild 16 files): "
+                 "configure it with -DSHADOWLAB_UNITY=OFF")
+    target = a.test or FOLDER_TESTS.get(a.folder.split("/")[0])
+    if not target:
+        fail("--folder", f"no test binary known for '{a.folder}' (give --test)")
+    files = folder_files(a.folder)
+    if not files:
+        fail("--folder", f"'{a.folder}' has no C++ sources")
+    if a.no_headers:
+        files = [f for f in files if f.endswith(".cpp")]
+    mutants = sample(all_mutants(a.folder, files), a.sample, a.seed)
+    if a.list:
+        for m in mutants:
+            with open(os.path.join(ROOT, m.path), encoding="utf-8") as f:
+                b, af = describe(m, f.read())
+            print(f"{m.id} {m.path}:{m.line} [{m.rule}]\n  - {b}\n  + {af}")
+        print(f"{len(mutants)} mutants")
+        return 0
+    state_path = a.state or os.path.join(a.build, "mutate_state.jsonl")
+    backup = state_path + ".orig"
+    if os.path.exists(backup):  # an interrupted run: put the source back first
+        with open(backup, encoding="utf-8") as f:
+            rec = json.load(f)
+        with open(os.path.join(ROOT, rec["path"]), "w", encoding="utf-8") as f:
+            f.write(rec["text"])
+        os.remove(backup)
+        print(f"{PROGRAM}: restored {rec['path']} from an interrupted run", file=sys.stderr)
+    done = load_state(state_path)
+    todo = [m for m in mutants if m.id not in done]
+    log = open(state_path + ".buildlog", "a", encoding="utf-8")
+    print(f"{PROGRAM}: {a.folder}: {len(mutants)} mutants drawn (seed {a.seed}), {len(todo)} to run, "
+          f"tests: {target}", flush=True)
+    if not build(a.build, target, log):
+        fail("--build", f"the unmutated sources do not build {target} (log: {state_path}.buildlog)")
+    rc, failed, base = run_tests(a.build, target, None, a.gtest_filter)
+    if rc != 0:
+        fail("--folder", f"{target} fails before any mutation: {failed}")
+    timeout = max(10.0, a.timeout_factor * base)
+    print(f"{PROGRAM}: baseline {target} {base:.1f} s; limit {timeout:.0f} s", flush=True)
+    with open(state_path, "a", encoding="utf-8") as state:
+        for i, m in enumerate(todo):
+            src = os.path.join(ROOT, m.path)
+            with open(src, encoding="utf-8") as f:
+                text = f.read()
+            with open(backup, "w", encoding="utf-8") as f:
+                json.dump({"path": m.path, "text": text}, f)
+            before, after = describe(m, text)
+            t0 = time.monotonic()
+            try:
+                with open(src, "w", encoding="utf-8") as f:
+                    f.write(m.apply(text))
+                if not build(a.build, target, None):
+                    status, detail = "stillborn", ""
+                else:
+                    rc, failed, _ = run_tests(a.build, target, timeout, a.gtest_filter)
+                    status = "survived" if rc == 0 else "killed"
+                    detail = "timeout" if rc == "timeout" else (failed[0] if failed else f"exit {rc}")
+            finally:
+                time.sleep(0.01)  # the restored file's time stamp must follow the mutant's object
+                with open(src, "w", encoding="utf-8") as f:
+                    f.write(text)
+                os.remove(backup)
+            rec = {"id": m.id, "folder": a.folder, "path": m.path, "line": m.line, "rule": m.rule,
+                   "status": status, "detail": detail, "before": before, "after": after,
+                   "seconds": round(time.monotonic() - t0, 1)}
+            state.write(json.dumps(rec) + "\n")
+            state.flush()
+            print(f"[{i + 1}/{len(todo)}] {status:9s} {m.path}:{m.line} {m.rule} "
+                  f"({rec['seconds']} s) {detail}", flush=True)
+    build(a.build, target, log)  # leave the build matching the sources
+    return report(state_path)
+
+
+def report(state_path):
+    done = load_state(state_path)
+    eq = load_equivalent()
+    folders = {}
+    for r in done.values():
+        f = folders.setdefault(r["folder"], {"mutants": 0, "stillborn": 0, "killed": 0,
+                                             "equivalent": 0, "survived": []})
+        f["mutants"] += 1
+        if r["status"] == "stillborn":
+            f["stillborn"] += 1
+        elif r["status"] == "killed":
+            f["killed"] += 1
+        elif r["id"] in eq:
+            f["equivalent"] += 1
+        else:
+            f["survived"].append(r)
+    print(f"{'folder':12s} {'mutants':>7s} {'stillborn':>9s} {'killed':>6s} {'equivalent':>10s} "
+          f"{'survived':>8s} {'survived %':>10s}")
+    for name, f in sorted(folders.items()):
+        live = f["mutants"] - f["stillborn"] - f["equivalent"]
+        pct = 100.0 * len(f["survived"]) / live if live else 0.0
+        print(f"{name:12s} {f['mutants']:7d} {f['stillborn']:9d} {f['killed']:6d} {f['equivalent']:10d} "
+              f"{len(f['survived']):8d} {pct:9.1f}%")
+    for name, f in sorted(folders.items()):
+        for r in sorted(f["survived"], key=lambda r: (r["path"], r["line"])):
+            print(f"\nsurvived {r['id']} {r['path']}:{r['line']} [{r['rule']}]\n  - {r['before']}\n  + {r['after']}")
+    return 0
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog=PROGRAM, description=__doc__.splitlines()[0])
+    p.add_argument("--build", required=True, help="a configured CMake build folder used only for this")
+    p.add_argument("--folder", help="a source folder: " + ", ".join(sorted(FOLDER_TESTS)) + " (or a sub-folder)")
+    p.add_argument("--test", help="test binary target (default: the folder's)")
+    p.add_argument("--gtest-filter", help="run only these tests of the binary")
+    p.add_argument("--sample", type=int, help="draw this many mutants (default: all)")
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--state", help="results file (default BUILD/mutate_state.jsonl)")
+    p.add_argument("--timeout-factor", type=float, default=4.0)
+    p.add_argument("--no-headers", action="store_true", help="mutate .cpp files only")
+    p.add_argument("--list", action="store_true", help="print the drawn mutants and stop")
+    p.add_argument("--report", action="store_true", help="print the table of the state file and stop")
+    a = p.parse_args(argv)
+    if a.sample is not None and a.sample < 1:
+        fail("--sample", f"{a.sample}: must be at least 1")
+    if a.timeout_factor <= 1:
+        fail("--timeout-factor", f"{a.timeout_factor}: must exceed 1")
+    if a.report:
+        return report(a.state or os.path.join(a.build, "mutate_state.jsonl"))
+    if not a.folder:
+        fail("--folder", "needed unless --report")
+    if not os.path.isdir(os.path.join(ROOT, a.folder)):
+        fail("--folder", f"'{a.folder}' is not a folder of the repository")
+    return run(a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
