@@ -205,6 +205,17 @@ ImageF mask_scene(int w, int h, unsigned seed, float shift) {
   return im;
 }
 
+TEST(Flip, SrgbDecodeIsTheStandardsPiecewiseCurve) {
+  // IEC 61966-2-1: v / 12.92 up to 0.04045, ((v + 0.055) / 1.055)^2.4 above; the values are
+  // those formulas evaluated in Python (float64).
+  EXPECT_EQ(srgb_to_linear(0.0), 0.0);
+  EXPECT_NEAR(srgb_to_linear(0.04), 0.0030959752321981426, 1e-17);
+  EXPECT_NEAR(srgb_to_linear(0.04045), 0.0031308049535603713, 1e-17);   // the linear side
+  EXPECT_NEAR(srgb_to_linear(0.040451), 0.0031308860048338896, 1e-15);  // the power side
+  EXPECT_NEAR(srgb_to_linear(0.5), 0.21404114048223255, 1e-15);
+  EXPECT_NEAR(srgb_to_linear(1.0), 1.0, 1e-15);
+}
+
 TEST(Flip, IdenticalImagesGiveZero) {
   const ImageF a = mask_scene(48, 36, 1, 0.0f);
   const ImageF e = flip_error_map(a, a);
@@ -231,6 +242,19 @@ TEST(Flip, UniformShiftIsTheHandComputedColourError) {
       colour_error(hyab(hunt_lab({0.8L, 0.1L, 0.1L}), hunt_lab({0.8L, 0.4L, 0.1L})), cmax_bf());
   const ImageF e2 = flip_error_map(d, c);
   for (float v : e2.data) ASSERT_NEAR(v, double(want2), 1e-7);
+  // Black against white: an error above the knee p_c·c_max, mapped onto [p_t, 1].
+  const LD want3 =
+      colour_error(hyab(hunt_lab({0.0L, 0.0L, 0.0L}), hunt_lab({1.0L, 1.0L, 1.0L})), cmax_bf());
+  ASSERT_GT(want3, 0.95L);
+  for (float v : flip_error_map(flat(24, 20, 0, 0, 0), flat(24, 20, 1, 1, 1)).data)
+    ASSERT_NEAR(v, double(want3), 1e-7);
+}
+
+TEST(Flip, MeanIsThePlainMeanOfTheMap) {
+  ImageF m(3, 2, 1);
+  for (int i = 0; i < 6; ++i) m.data[size_t(i)] = float(i);  // 0..5: rows differ, columns differ
+  EXPECT_EQ(flip_mean(m), 2.5);
+  EXPECT_EQ(flip_mean(ImageF()), 0.0);
 }
 
 // A flat region's value does not depend on the image's size: every pixel of a 30 × 30 and of a
@@ -293,6 +317,10 @@ TEST(Flip, BadInputIsRejected) {
   EXPECT_THROW(flip_error_map(a, a, 0.5), InputError);  // the edge detector would be 0/0
   for (float v : flip_error_map(mask_scene(8, 8, 2, 0.0f), a, 1.0).data) ASSERT_TRUE(std::isfinite(v));
   EXPECT_THROW(flip_error_map(ImageF(), ImageF()), InputError);
+  // The observer's range is [1, 1000] pixels per degree, both ends included.
+  EXPECT_NO_THROW(flip_error_map(a, a, 1.0));
+  EXPECT_NO_THROW(flip_error_map(a, a, 1000.0));
+  EXPECT_THROW(flip_error_map(a, a, 1000.5), InputError);
 }
 
 }  // namespace

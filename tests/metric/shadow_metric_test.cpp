@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -13,6 +14,8 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "metric/box_blur.h"
+#include "metric/contour.h"
 #include "metric/image_error.h"
 #include "metric/metric_report.h"
 
@@ -125,6 +128,30 @@ TEST(ShadowMetric, GroupsAndTotalOnHandAnalyzedCase) {
   w.aesthetics = 0.0;
   const MetricReport rw = compute_metric(test, ref, nullptr, &t, w);
   EXPECT_NEAR(rw.total, (0.4 + 1.0 + 0.5) / 4.0, 1e-12);
+}
+
+TEST(ShadowMetric, EachContourScoreIsItsOwnLevel) {
+  // Reference: a ramp x/63 across 64×48 (k = 1: no blur). Test: the ramp pivoted about the
+  // 10 % level with 1.2 times the slope, so its 10 % contour is the reference's (c10 = 1) and
+  // its 50 % and 90 % contours lie 63·(0.4 − 0.4/1.2) = 4.2 and 63·(0.8 − 0.8/1.2) = 8.4 pixels
+  // off, against D_MAX = 0.2·√(64·48) = 11.09: c50 ≈ 0.62, c90 ≈ 0.24 (±1 pixel of contour
+  // placement), each the contour score of its own level.
+  ImageF ref(64, 48, 1), test(64, 48, 1);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double v = x / 63.0;
+      ref.at(x, y) = float(v);
+      test.at(x, y) = float(std::clamp(0.1 + 1.2 * (v - 0.1), 0.0, 1.0));
+    }
+  const MetricReport r = compute_metric(test, ref, nullptr, nullptr);
+  ASSERT_EQ(r.blur_size, 1);
+  const ImageD bt = box_blur(test, 1), br = box_blur(ref, 1);
+  EXPECT_EQ(r.c10, 1.0);
+  EXPECT_EQ(r.c50, contour_score(bt, br, 0.5));
+  EXPECT_EQ(r.c90, contour_score(bt, br, 0.9));
+  const double dmax = 0.2 * std::sqrt(64.0 * 48.0);
+  EXPECT_NEAR(r.c50, 1.0 - 4.2 / dmax, 1.0 / dmax);
+  EXPECT_NEAR(r.c90, 1.0 - 8.4 / dmax, 1.0 / dmax);
 }
 
 TEST(ShadowMetric, JsonHasExactlyTheDocumentedKeys) {

@@ -17,6 +17,14 @@ TEST(VisibleDifference, IdenticalImagesShowNothing) {
   EXPECT_EQ(d.masked, 0.0);
 }
 
+TEST(VisibleDifference, EmptyImagesShowNothing) {
+  // No pixel, so no pixel differs: both fractions are 0, not 0/0.
+  const ImageF empty(0, 0, 1, 0.0f);
+  const VisibleDifference d = visible_difference(empty, empty);
+  EXPECT_EQ(d.plain, 0.0);
+  EXPECT_EQ(d.masked, 0.0);
+}
+
 TEST(VisibleDifference, SmoothBackgroundDoesNotMask) {
   // A flat reference has σ = 0 everywhere: no elevation, so an offset of 3/255 (> 2/255) is
   // visible at every pixel under both thresholds, and one of 1/255 at none.

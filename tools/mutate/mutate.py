@@ -63,6 +63,7 @@ def sample(mutants, n, seed):
 
 
 def load_state(path):
+    """{id: the latest record}: a mutant run again (--retry-survivors) keeps its last result."""
     done = {}
     if os.path.exists(path):
         with open(path, encoding="utf-8") as f:
@@ -153,6 +154,9 @@ def run(a):
         os.remove(backup)
         print(f"{PROGRAM}: restored {rec['path']} from an interrupted run", file=sys.stderr)
     done = load_state(state_path)
+    if a.retry_survivors:  # judge the survivors again, e.g. after new tests
+        eq = load_equivalent()
+        done = {k: r for k, r in done.items() if r["status"] != "survived" or k in eq}
     todo = [m for m in mutants if m.id not in done]
     log = open(state_path + ".buildlog", "a", encoding="utf-8")
     print(f"{PROGRAM}: {a.folder}: {len(mutants)} mutants drawn (seed {a.seed}), {len(todo)} to run, "
@@ -238,6 +242,8 @@ def main(argv=None):
     p.add_argument("--state", help="results file (default BUILD/mutate_state.jsonl)")
     p.add_argument("--timeout-factor", type=float, default=4.0)
     p.add_argument("--no-headers", action="store_true", help="mutate .cpp files only")
+    p.add_argument("--retry-survivors", action="store_true",
+                   help="run the drawn mutants that survived before again (after adding tests)")
     p.add_argument("--list", action="store_true", help="print the drawn mutants and stop")
     p.add_argument("--report", action="store_true", help="print the table of the state file and stop")
     a = p.parse_args(argv)
