@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "techniques/nsm/nsm_network.h"
+#include "techniques/pipeline/light_faces.h"
 #include "techniques/registry/technique.h"
 #include "techniques/registry/technique_keys.h"
 

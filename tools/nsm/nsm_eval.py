@@ -19,12 +19,15 @@ import torch
 
 import nsm_export
 from nsm_data import Dataset
+from nsm_loss import centre_mask, ssim_map
 
 PROGRAM = "nsm_eval"
 
 
 def split_errors(model, features, frames, multiple):
-    """{radius: (network L1, hard L1, constant L1, pixels)} pooled over the frames."""
+    """{radius: (network L1, hard L1, constant L1, pixels, network SSIM)} pooled over the frames
+    (SSIM: nsm_loss's 11x11 local SSIM against the reference, averaged over the same pixels
+    at least 5 from the crop's edge)."""
     acc = {}
     with torch.no_grad():
         for fr in frames:
@@ -39,16 +42,21 @@ def split_errors(model, features, frames, multiple):
                 y = model(x)[0, 0].numpy().astype(np.float64)
                 t = np.array(fr.reference(k)[:h, :w], np.float64)
                 hard = (zr >= 0.99).astype(np.float64)
-                a = acc.setdefault(radius, [0.0, 0.0, [], 0])
+                a = acc.setdefault(radius, [0.0, 0.0, [], 0, 0.0, 0])
                 a[0] += float(np.abs(y - t)[cov].sum())
+                s = ssim_map(torch.from_numpy(y.astype(np.float32))[None, None],
+                             torch.from_numpy(t.astype(np.float32))[None, None])[0, 0].numpy()
+                c = centre_mask(cov)
+                a[4] += float(s[c].sum())
+                a[5] += int(c.sum())
                 a[1] += float(np.abs(hard - t)[cov].sum())
                 a[2].append(t[cov])
                 a[3] += int(cov.sum())
     out = {}
-    for radius, (net, hard, refs, n) in sorted(acc.items()):
+    for radius, (net, hard, refs, n, ssim, ns) in sorted(acc.items()):
         ref = np.concatenate(refs)
         const = float(np.abs(ref - np.median(ref)).mean()) if n else float("nan")
-        out[radius] = (net / n, hard / n, const, n)
+        out[radius] = (net / n, hard / n, const, n, ssim / ns if ns else float("nan"))
     return out
 
 
@@ -75,17 +83,19 @@ def main(argv=None):
         scenes = sorted({f.scene for f in frames})
         table[split] = {"frames": len(frames), "scenes": scenes,
                         "radii": split_errors(model, features, frames, model.config.multiple)}
-    print(f"{'split':6s} {'frames':>6s} {'radius':>7s} {'network':>8s} {'hard':>8s} {'constant':>8s}")
+    print(f"{'split':6s} {'frames':>6s} {'radius':>7s} {'network':>8s} {'hard':>8s} {'constant':>8s} {'ssim':>8s}")
     for split, t in table.items():
-        for radius, (net, hard, const, n) in t["radii"].items():
-            print(f"{split:6s} {t['frames']:6d} {radius:7.3f} {net:8.4f} {hard:8.4f} {const:8.4f}")
+        for radius, (net, hard, const, n, ssim) in t["radii"].items():
+            print(f"{split:6s} {t['frames']:6d} {radius:7.3f} {net:8.4f} {hard:8.4f} {const:8.4f} {ssim:8.4f}")
         nets = [v[0] * v[3] for v in t["radii"].values()]
         ns = [v[3] for v in t["radii"].values()]
-        print(f"{split:6s} {t['frames']:6d} {'all':>7s} {sum(nets) / sum(ns):8.4f}   scenes: {', '.join(t['scenes'])}")
+        ssim = np.mean([v[4] for v in t["radii"].values()])  # every radius has the same pixels
+        print(f"{split:6s} {t['frames']:6d} {'all':>7s} {sum(nets) / sum(ns):8.4f} {'':8s} {'':8s} {ssim:8.4f}"
+              f"   scenes: {', '.join(t['scenes'])}")
     if a.json:
         with open(a.json, "w") as f:
             json.dump({s: {"frames": t["frames"], "scenes": t["scenes"],
-                           "radii": {str(r): dict(zip(("network", "hard", "constant", "pixels"), v))
+                           "radii": {str(r): dict(zip(("network", "hard", "constant", "pixels", "ssim"), v))
                                      for r, v in t["radii"].items()}} for s, t in table.items()},
                       f, indent=1)
     return 0
