@@ -240,6 +240,22 @@ TEST(Flicker, SameNumbersAtAnyThreadCount) {
     }
 }
 
+TEST(Flicker, DefaultStepsAreAQuarterTexelOrAQuarterPixel) {
+  // Light paths: a quarter of the finest map's texel, 2·|L − target|/res; camera-pan: a quarter
+  // of a pixel at the target, 2·|target − eye|·tan(fov/2)/height (long double here).
+  const Scene s = make_builtin_scene("default");
+  FlickerConfig c;
+  c.resolutions = {256, 1024};
+  c.path = FlickerPath::LightLine;
+  const long double lt = glm::length(s.light.position - s.camera.target);
+  EXPECT_NEAR(flicker_default_step(s, c), double(0.25L * 2.0L * lt / 1024.0L), 1e-7);
+  c.path = FlickerPath::CameraPan;
+  const long double d = glm::length(s.camera.target - s.camera.eye);
+  const long double pixel =
+      2.0L * d * std::tan(s.camera.fov_y_deg * 3.14159265358979323846L / 360.0L) / s.camera.height;
+  EXPECT_NEAR(flicker_default_step(s, c), double(0.25L * pixel), 1e-7);
+}
+
 TEST(Flicker, BadConfigIsRejectedBeforeAnyWork) {
   const Scene s = small_default(64, 48);
   auto fails = [&](FlickerConfig c, const std::string& flag) {

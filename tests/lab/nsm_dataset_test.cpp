@@ -42,6 +42,37 @@ TEST(NsmDataset, PerturbationsStayWithinTheirBounds) {
   EXPECT_GT(max_cam, 0.4);
 }
 
+TEST(NsmDataset, TrajectoriesStayWithinTheirStatedRanges) {
+  // The camera's eye orbits the vertical through its target by up to ±40° at 0.85–1.15× its
+  // distance (docs/programs/nsm_data.md). 300 uniform draws reach past 39° (P(miss) =
+  // (39/40)^300 = 5e-4) and within 0.01 of each end of the distance range ((1 − 0.01/0.3)^300
+  // = 4e-5), so a range 1° or 0.01 too narrow fails as surely as one too wide.
+  NsmDatasetParams p;
+  const Scene base = make_builtin_scene("default");
+  const vec3 t = base.camera.target;
+  const long double base_r = glm::length(base.camera.eye - t);
+  const long double a0 = std::atan2((long double)(base.camera.eye.x - t.x), (long double)(base.camera.eye.z - t.z));
+  double max_angle = 0.0, min_scale = 2.0, max_scale = 0.0;
+  for (int frame = 0; frame < 300; ++frame) {
+    const Scene s = nsm_frame_scene(base, p, frame);
+    const vec3 e = s.camera.eye - s.camera.target;
+    long double a = std::atan2((long double)e.x, (long double)e.z) - a0;
+    while (a > 3.14159265358979323846L) a -= 2 * 3.14159265358979323846L;
+    while (a < -3.14159265358979323846L) a += 2 * 3.14159265358979323846L;
+    const double deg = double(std::fabs(a) * 180.0L / 3.14159265358979323846L);
+    EXPECT_LE(deg, 40.0 + 1e-3) << frame;
+    max_angle = std::max(max_angle, deg);
+    const double scale = double(glm::length(e) / base_r);
+    EXPECT_GE(scale, 0.85 - 1e-5) << frame;
+    EXPECT_LE(scale, 1.15 + 1e-5) << frame;
+    min_scale = std::min(min_scale, scale);
+    max_scale = std::max(max_scale, scale);
+  }
+  EXPECT_GT(max_angle, 39.0);
+  EXPECT_LT(min_scale, 0.86);
+  EXPECT_GT(max_scale, 1.14);
+}
+
 TEST(NsmDataset, CropsLieInsideTheFrame) {
   NsmDatasetParams p;
   p.width = 100;

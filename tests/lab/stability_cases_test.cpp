@@ -2,6 +2,9 @@
 // (no NaN/Inf anywhere; acne, mismatch or leak within the bound against Embree).
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+
 #include "lab/stability_cases.h"
 
 namespace shadowlab {
@@ -18,6 +21,11 @@ TEST(Stability, EveryCaseMeetsItsBound) {
     bounded += r.bound > 0.0 || r.expectation.find("no lit pixel") != std::string::npos;
   }
   EXPECT_GE(bounded, 30u) << "most rows carry a numeric bound";
+  // Each (case, setting, spec) is run once: a case repeated would only repeat its rows.
+  std::set<std::string> keys;
+  for (const StabilityRow& r : rows)
+    EXPECT_TRUE(keys.insert(r.case_name + "|" + r.setting + "|" + r.spec).second)
+        << "twice: " << r.case_name << " " << r.setting << " " << r.spec;
   // The bounds can fail: the default depth bias at grazing incidence loses many lit pixels
   // (a measured row without a bound), which normal offset then recovers.
   bool seen = false;

@@ -1,6 +1,7 @@
 // The tuner's decisions on hand-made numbers: the budget winner and halving's survivors.
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "lab/tune_report.h"
 #include "lab/tuner.h"
 
@@ -16,6 +17,24 @@ TuneSummary summary(size_t point, const std::string& technique, double objective
   s.time_ms = ms;
   s.bytes = bytes;
   return s;
+}
+
+TEST(Tune, EveryObjectiveReadsItsOwnField) {
+  // Each field a distinct value: an objective that read another field, or fell through to the
+  // next name, would return another number. flip is maximized as 1 − mean FLIP.
+  MetricReport m;
+  double v = 0.01;
+  for (double* f : {&m.total, &m.fidelity, &m.aesthetics, &m.detail, &m.ssim, &m.psnr, &m.c10,
+                    &m.c50, &m.c90, &m.dark, &m.lit, &m.acne, &m.noise, &m.flip_mean})
+    *f = (v += 0.01);
+  const std::vector<std::pair<std::string, double>> want{
+      {"total", m.total}, {"fidelity", m.fidelity}, {"aesthetics", m.aesthetics},
+      {"detail", m.detail}, {"ssim", m.ssim}, {"psnr", m.psnr}, {"c10", m.c10}, {"c50", m.c50},
+      {"c90", m.c90}, {"dark", m.dark}, {"lit", m.lit}, {"acne", m.acne}, {"noise", m.noise},
+      {"flip", 1.0 - m.flip_mean}};
+  ASSERT_EQ(want.size(), tune_objectives().size());
+  for (const auto& [name, value] : want) EXPECT_EQ(objective_value(m, name), value) << name;
+  EXPECT_THROW(objective_value(m, "speed"), InputError);
 }
 
 TEST(Tune, BudgetWinnerIsTheBestThatFitsThenTheCheapest) {
