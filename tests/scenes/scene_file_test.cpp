@@ -1,8 +1,10 @@
 // The JSON scene file (scenes/scene_file.h): model transforms against hand-computed positions,
 // camera, light, projector and ground keys, framing without a base, and one-line errors naming
 // the key.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +111,54 @@ TEST(SceneFile, ProjectorKey) {
   EXPECT_TRUE(s.projector.enabled);
   EXPECT_EQ(s.light.position, vec3(0, 3, 0));
   EXPECT_FLOAT_EQ(s.projector.fov_y_deg, 50.0f);
+}
+
+// The ranges of docs/scenes.md's table: a value just outside either end is the one-line range
+// error naming the key, and the ends load (where another rule allows: a camera far of 1e-6
+// would need a near below 1e-6, and a light 1e6 or 1e7 m deep fails the depth-precision check, so
+// those ends are tried with the nearest value the other rules accept).
+TEST(SceneFile, NumbersLoadAtTheEndsOfTheirDocumentedRanges) {
+  struct Range {
+    std::string object, key;
+    double lo, hi;          // the documented range
+    double lo_ok, hi_ok;    // values that must load
+    std::string extra = "";  // other keys the object needs
+  };
+  const std::string proj = R"("position": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], )";
+  const std::vector<Range> ranges = {
+      {"camera", "fov_deg", 1, 170, 1, 170},
+      {"camera", "near", 1e-6, 1e6, 1e-6, 1e6, R"("far": 1e7, )"},
+      {"camera", "far", 1e-6, 1e7, 2e-6, 1e7, R"("near": 1e-6, )"},
+      {"light", "radius", 0, 1e4, 0, 1e4, R"("position": [0, 30000, 0], )"},
+      {"light", "near", 1e-6, 1e6, 1e-6, 20, R"("position": [0, 30, 0], )"},
+      {"light", "far", 1e-6, 1e7, 2e-6, 1e4, R"("near": 1e-6, )"},
+      {"ground", "y", -1e7, 1e7, -1e7, 1e7},
+      {"ground", "size", 1e-3, 1e6, 1e-3, 1e6},
+      {"projector", "fov_deg", 0.1, 169, 0.1, 169, proj},
+      {"projector", "aspect", 0.05, 20, 0.05, 20, proj},
+  };
+  int i = 0;
+  for (const Range& r : ranges) {
+    auto file = [&](double v) {
+      const std::string text = fmt::format(R"({{"base": "plane", "{}": {{{}"{}": {:.17g}}}}})",
+                                           r.object, r.extra, r.key, v);
+      return std::pair{write("range" + std::to_string(i++) + ".json", text), text};
+    };
+    for (const double v : {r.lo_ok, r.hi_ok}) {
+      const auto [path, text] = file(v);
+      EXPECT_NO_THROW(load_scene_file(path, nullptr)) << text;
+    }
+    for (const double v : {r.lo - std::max(1e-7, std::fabs(r.lo) * 0.01), r.hi + std::fabs(r.hi) * 0.01}) {
+      const auto [path, text] = file(v);
+      try {
+        load_scene_file(path, nullptr);
+        ADD_FAILURE() << "accepted: " << text;
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(r.object + "." + r.key + ": is "), std::string::npos)
+            << text << " → " << e.what();
+      }
+    }
+  }
 }
 
 // Each bad file: one InputError naming the file, the key and the reason, on one line.
