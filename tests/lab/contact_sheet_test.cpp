@@ -140,6 +140,10 @@ TEST(ContactSheet, BoxDownscaleByOneIsIdentityAndAveragesPartialBlocks) {
   for (int x = 0; x < 5; ++x) ramp.at(x, 0) = float(x);
   const ImageF half = box_downscale(ramp, 2);
   ASSERT_EQ(half.width, 3);
+  ASSERT_EQ(half.height, 1);  // ceil(1 / 2)
+  const ImageF m3 = box_downscale(m, 3);  // 7 × 5 → ceil(7/3) × ceil(5/3)
+  EXPECT_EQ(m3.width, 3);
+  EXPECT_EQ(m3.height, 2);
   EXPECT_FLOAT_EQ(half.at(0, 0), 0.5f);
   EXPECT_FLOAT_EQ(half.at(1, 0), 2.5f);
   EXPECT_FLOAT_EQ(half.at(2, 0), 4.0f);  // the lone edge pixel, not (4 + 0) / 2
