@@ -87,15 +87,26 @@ def load_equivalent():
     return eq
 
 
-def build(build_dir, target, log):
-    r = subprocess.run(["cmake", "--build", build_dir, "--target", target, "-j2"],
+def build(build_dir, targets, log):
+    r = subprocess.run(["cmake", "--build", build_dir, "--target", *targets, "-j2"],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if log and r.returncode:
         log.write(r.stdout[-4000:])
     return r.returncode == 0
 
 
-def run_tests(build_dir, target, timeout, gtest_filter):
+def run_tests(build_dir, targets, timeouts, gtest_filter):
+    """Runs each binary in turn until one fails: (rc, [first failed test], seconds of each)."""
+    times = []
+    for target, timeout in zip(targets, timeouts):
+        rc, failed, secs = run_binary(build_dir, target, timeout, gtest_filter)
+        times.append(secs)
+        if rc != 0:
+            return rc, failed, times
+    return 0, [], times
+
+
+def run_binary(build_dir, target, timeout, gtest_filter):
     exe = os.path.join(build_dir, "tests", target)
     cmd = [exe, "--gtest_fail_fast", "--gtest_brief=1"]
     if gtest_filter:
@@ -129,6 +140,7 @@ def run(a):
             fail("--build", f"'{a.build}' compiles unity batches (each mutant would rebuild 16 files): "
                  "configure it with -DSHADOWLAB_UNITY=OFF")
     target = a.test or FOLDER_TESTS.get(a.folder.split("/")[0])
+    targets = target.split(",") if target else []
     if not target:
         fail("--folder", f"no test binary known for '{a.folder}' (give --test)")
     files = folder_files(a.folder)
@@ -161,13 +173,14 @@ def run(a):
     log = open(state_path + ".buildlog", "a", encoding="utf-8")
     print(f"{PROGRAM}: {a.folder}: {len(mutants)} mutants drawn (seed {a.seed}), {len(todo)} to run, "
           f"tests: {target}", flush=True)
-    if not build(a.build, target, log):
+    if not build(a.build, targets, log):
         fail("--build", f"the unmutated sources do not build {target} (log: {state_path}.buildlog)")
-    rc, failed, base = run_tests(a.build, target, None, a.gtest_filter)
+    rc, failed, base = run_tests(a.build, targets, [None] * len(targets), a.gtest_filter)
     if rc != 0:
         fail("--folder", f"{target} fails before any mutation: {failed}")
-    timeout = max(10.0, a.timeout_factor * base)
-    print(f"{PROGRAM}: baseline {target} {base:.1f} s; limit {timeout:.0f} s", flush=True)
+    timeouts = [max(10.0, a.timeout_factor * b) for b in base]
+    print(f"{PROGRAM}: baseline {target} " + ", ".join(f"{b:.1f} s" for b in base) +
+          "; limit " + ", ".join(f"{t:.0f} s" for t in timeouts), flush=True)
     with open(state_path, "a", encoding="utf-8") as state:
         for i, m in enumerate(todo):
             src = os.path.join(ROOT, m.path)
@@ -180,10 +193,10 @@ def run(a):
             try:
                 with open(src, "w", encoding="utf-8") as f:
                     f.write(m.apply(text))
-                if not build(a.build, target, None):
+                if not build(a.build, targets, None):
                     status, detail = "stillborn", ""
                 else:
-                    rc, failed, _ = run_tests(a.build, target, timeout, a.gtest_filter)
+                    rc, failed, _ = run_tests(a.build, targets, timeouts, a.gtest_filter)
                     status = "survived" if rc == 0 else "killed"
                     detail = "timeout" if rc == "timeout" else (failed[0] if failed else f"exit {rc}")
             finally:
@@ -191,14 +204,14 @@ def run(a):
                 with open(src, "w", encoding="utf-8") as f:
                     f.write(text)
                 os.remove(backup)
-            rec = {"id": m.id, "folder": a.folder, "path": m.path, "line": m.line, "rule": m.rule,
+            rec = {"id": m.id, "folder": a.folder, "tests": target, "path": m.path, "line": m.line, "rule": m.rule,
                    "status": status, "detail": detail, "before": before, "after": after,
                    "seconds": round(time.monotonic() - t0, 1)}
             state.write(json.dumps(rec) + "\n")
             state.flush()
             print(f"[{i + 1}/{len(todo)}] {status:9s} {m.path}:{m.line} {m.rule} "
                   f"({rec['seconds']} s) {detail}", flush=True)
-    build(a.build, target, log)  # leave the build matching the sources
+    build(a.build, targets, log)  # leave the build matching the sources
     return report(state_path)
 
 
@@ -235,7 +248,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog=PROGRAM, description=__doc__.splitlines()[0])
     p.add_argument("--build", required=True, help="a configured CMake build folder used only for this")
     p.add_argument("--folder", help="a source folder: " + ", ".join(sorted(FOLDER_TESTS)) + " (or a sub-folder)")
-    p.add_argument("--test", help="test binary target (default: the folder's)")
+    p.add_argument("--test", help="test binary targets, comma-separated, run in turn (default: the folder's)")
     p.add_argument("--gtest-filter", help="run only these tests of the binary")
     p.add_argument("--sample", type=int, help="draw this many mutants (default: all)")
     p.add_argument("--seed", type=int, default=1)
