@@ -6,6 +6,7 @@ comments, string and character literals and preprocessor lines are blanked, so n
 inside them. The rules are plain text patterns over that copy; a mutant that does not compile
 is "stillborn" and does not count.
 """
+import bisect
 import hashlib
 import re
 from dataclasses import dataclass
@@ -123,8 +124,8 @@ def _split_args(masked, open_pos, close_pos):
     args, depth, s = [], 0, open_pos + 1
     for k in range(open_pos + 1, close_pos):
         c = masked[k]
-        if c in "([{<":
-            depth += 1 if c != "<" else 0
+        if c in "([{":
+            depth += 1
         elif c in ")]}":
             depth -= 1
         elif c == "," and depth == 0:
@@ -134,9 +135,15 @@ def _split_args(masked, open_pos, close_pos):
     return [(a + (len(masked[a:b]) - len(masked[a:b].lstrip())), b) for a, b in args]
 
 
-def _term_end(masked, start):
-    """End of the operand that starts at `start`: up to the next + or - (spaced), comma,
-    semicolon, ?, : or closing bracket at depth 0."""
+# What ends an operand at depth 0: a term ends at the next spaced + or -, a logical or
+# relational operator, or , ; ? :; a factor also at a space (the next operator).
+_TERM_STOPS = (" + ", " - ", " && ", " || ", " < ", " > ", " <= ", " >= ", " == ", " != ")
+
+
+def _operand_end(masked, start, factor):
+    """End of the operand of +/- (factor False) or of * and / (factor True) that starts at
+    `start`: at the stops above, or at the bracket that closes an enclosing group; a factor
+    that is a whole bracketed group (a call, a parenthesis) ends after it."""
     depth = 0
     k = start
     while k < len(masked):
@@ -147,11 +154,9 @@ def _term_end(masked, start):
             if depth == 0:
                 return k
             depth -= 1
-        elif depth == 0 and (c in ",;?:" or masked.startswith(" + ", k) or masked.startswith(" - ", k)
-                             or masked.startswith(" && ", k) or masked.startswith(" || ", k)
-                             or masked.startswith(" < ", k) or masked.startswith(" > ", k)
-                             or masked.startswith(" <= ", k) or masked.startswith(" >= ", k)
-                             or masked.startswith(" == ", k) or masked.startswith(" != ", k)):
+            if factor and depth == 0 and k + 1 < len(masked) and not (masked[k + 1].isalnum() or masked[k + 1] in "._[("):
+                return k + 1
+        elif depth == 0 and (c in ",;?:" or (c == " " if factor else masked.startswith(_TERM_STOPS, k))):
             return k
         k += 1
     return k
@@ -159,7 +164,7 @@ def _term_end(masked, start):
 
 def _constants(lit, exp, suffix):
     """Replacements for a numeric literal: 0, ×2, +1, −1 (as literals of the same kind)."""
-    is_float = "." in lit or bool(exp) or "f" in suffix.lower() and "." in lit
+    is_float = "." in lit or bool(exp)
     try:
         v = float(lit + (exp or "")) if is_float else int(lit)
     except ValueError:
@@ -189,14 +194,7 @@ def generate(path, text):
     line_starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n"]
 
     def line_of(pos):
-        lo, hi = 0, len(line_starts) - 1
-        while lo < hi:
-            mid = (lo + hi + 1) // 2
-            if line_starts[mid] <= pos:
-                lo = mid
-            else:
-                hi = mid - 1
-        return lo + 1
+        return bisect.bisect_right(line_starts, pos)
 
     raw = []
     for mo in OP_RE.finditer(m):
@@ -206,13 +204,13 @@ def generate(path, text):
             raw.append((s, e, rep, f"op {op} -> {rep}"))
         if op in ("+", "-", "*", "/"):
             # drop the right-hand term or factor: "a + b" -> "a"
-            te = _term_end(m, e + 1) if op in "+-" else _factor_end(m, e + 1)
+            te = _operand_end(m, e + 1, factor=op in "*/")
             if te > e + 1:
                 raw.append((mo.start(), te, "", f"drop {op} term"))
     for mo in NUM_RE.finditer(m):
         lit, exp, suffix = mo.group(1), mo.group(2) or "", mo.group(3) or ""
-        # skip array sizes and template arguments are still fair game; skip literals in
-        # attribute/alignment positions by their context is not attempted (stillborn at worst)
+        # every literal, array sizes and template arguments included: one that cannot change
+        # does not compile (stillborn)
         for rep in _constants(lit, exp, suffix):
             raw.append((mo.start(), mo.end(), rep, f"const {lit}{exp} -> {rep}"))
     for mo in CALL2_RE.finditer(m):
@@ -244,29 +242,11 @@ def generate(path, text):
         if text[s:e] == rep:
             continue
         ln = line_of(s)
-        line_text = text[line_starts[ln - 1]:text.find("\n", s) if text.find("\n", s) >= 0 else len(text)]
+        line_end = text.find("\n", s)
+        line_text = text[line_starts[ln - 1]:line_end if line_end >= 0 else len(text)]
         key = (rule, rep, line_text.strip())
         seen[key] = seen.get(key, 0) + 1
         h = hashlib.sha1("\0".join([path, rule, rep, line_text.strip(), str(seen[key])]).encode()).hexdigest()[:12]
         out.append(Mutant(path, s, e, rep, rule, ln, h))
     return out
 
-
-def _factor_end(masked, start):
-    """End of the factor that starts at `start` (one operand of * or /)."""
-    depth = 0
-    k = start
-    while k < len(masked):
-        c = masked[k]
-        if c in "([{":
-            depth += 1
-        elif c in ")]}":
-            if depth == 0:
-                return k
-            depth -= 1
-            if depth == 0 and k + 1 < len(masked) and not (masked[k + 1].isalnum() or masked[k + 1] in "._[("):
-                return k + 1
-        elif depth == 0 and (c in " ,;?:"):
-            return k
-        k += 1
-    return k

@@ -46,10 +46,10 @@ BIN_EDGES = (0.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, math.inf)
 PENUMBRA = (0.02, 0.98)
 
 
-def receptive_field(config_name, size=None):
+def receptive_field(config, size=None):
     """Side in pixels of the square of inputs that reach the centre output (random weights)."""
     torch.manual_seed(0)
-    net = build(config_name).double()
+    net = build(config).double()
     m = net.config.multiple
     size = size or max(16 * m, 256)  # the field is 2^(L+2) - 2 px: 30, 126, 510
     x = torch.randn(1, net.config.features, size, size, dtype=torch.float64, requires_grad=True)
@@ -60,10 +60,10 @@ def receptive_field(config_name, size=None):
     return int(max(ys.max() - ys.min(), xs.max() - xs.min()) + 1)
 
 
-def case_width_px(fr, k):
-    """95th percentile of the predicted penumbra width in pixels over the frame's occluded,
-    covered pixels facing the light at radius index k; None if no pixel is occluded."""
-    radius = fr.radii[k]
+def width_px_per_metre(fr):
+    """95th percentile, over the frame's occluded covered pixels facing the light, of the
+    predicted penumbra width in pixels for a light of radius 1 m (the width is proportional to
+    R, so a radius's case width is R times this); None if no pixel is occluded."""
     fov = SCENE_FOV_Y_DEG.get(fr.scene)
     if fov is None:
         raise SystemExit(f"{PROGRAM}: frame of scene '{fr.scene}': unknown field of view "
@@ -78,7 +78,7 @@ def case_width_px(fr, k):
     if not occluded.any():
         return None
     z, zf, d = z[occluded], zf[occluded], d[occluded]
-    w_m = 2.0 * (radius / fr.scale) * (zf - z) / z          # scene units (metres / s)
+    w_m = 2.0 * (1.0 / fr.scale) * (zf - z) / z             # scene units (metres / s)
     px = d * 2.0 * math.tan(math.radians(fov) / 2.0) / H    # scene units per pixel
     return float(np.percentile(w_m / px, 95))
 
@@ -117,17 +117,16 @@ def main(argv=None):
     acc = [[0, [[0.0, 0, 0.0, 0] for _ in nets]] for _ in range(nb)]
     with torch.no_grad():
         for fr in frames:
+            per_metre = width_px_per_metre(fr)
+            if per_metre is None:
+                continue
+            cov_full = (np.array(fr.coverage(0)) != 0) & (np.array(fr.feature(0, "c_e")) > 0)
             for k, radius in enumerate(fr.radii):
                 if radius <= 0:
                     continue
-                w = case_width_px(fr, k)
-                if w is None:
-                    continue
-                b = bin_of(w)
+                b = bin_of(radius * per_metre)
                 acc[b][0] += 1
                 t_full = np.array(fr.reference(k), np.float64)
-                c_e = np.array(fr.feature(0, "c_e"))
-                cov_full = (np.array(fr.coverage(0)) != 0) & (c_e > 0)
                 for j, (label, model, feats) in enumerate(nets):
                     m = model.config.multiple
                     h, wd = fr.height // m * m, fr.width // m * m
@@ -139,10 +138,7 @@ def main(argv=None):
                     s = acc[b][1][j]
                     s[0] += float(e[pen].sum()); s[1] += int(pen.sum())
                     s[2] += float(e[cov].sum()); s[3] += int(cov.sum())
-    rf = {}
-    for label, model, _ in nets:
-        name = next((n for n, c in __import__("nsm_model").CONFIGS.items() if c == model.config), None)
-        rf[label] = receptive_field(name) if name else None
+    rf = {label: receptive_field(model.config) for label, model, _ in nets}
     labels = [n[0] for n in nets]
     print("receptive field (px): " + ", ".join(f"{l} {rf[l]}" for l in labels))
     print(f"{'width (px)':>12s} {'cases':>5s} " + " ".join(f"{l:>15s}" for l in labels))
