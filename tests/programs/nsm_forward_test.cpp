@@ -17,9 +17,10 @@ namespace {
 using test::expect_clear_error;
 using test::run;
 
-std::string nsm_tiny_weights_file() {
+// Each test writes its own copy: ctest runs the tests of this file as concurrent processes.
+std::string nsm_tiny_weights_file(const std::string& name) {
   std::filesystem::create_directories(test::binary_path("nsm_forward"));
-  const std::string path = test::binary_path("nsm_forward/tiny.nsmw");
+  const std::string path = test::binary_path("nsm_forward/" + name + ".nsmw");
   NsmArch a;
   nsm_named_arch("tiny", a);
   test::nsmw_save(path, test::nsmw_bytes(test::nsmw_draft(a, 9)));
@@ -32,7 +33,7 @@ std::vector<char> nsm_output_bytes(const std::string& path) {
 }
 
 TEST(NsmForwardMain, RefusesBadInputInOneLine) {
-  const std::string w = nsm_tiny_weights_file(), out = " --out " + test::binary_path("nsm_forward/bad");
+  const std::string w = nsm_tiny_weights_file("tiny_refused"), out = " --out " + test::binary_path("nsm_forward/bad");
   expect_clear_error("nsm_forward" + out, "--weights: required");
   expect_clear_error("nsm_forward --weights " + test::binary_path("nsm_forward") + out,
                      "not a regular file");
@@ -47,7 +48,7 @@ TEST(NsmForwardMain, RefusesBadInputInOneLine) {
 }
 
 TEST(NsmForwardMain, WritesTheLibrarysOutputAtAnyThreadCount) {
-  const std::string w = nsm_tiny_weights_file();
+  const std::string w = nsm_tiny_weights_file("tiny_forward");
   const int W = 21, H = 13;
   std::vector<float> planes(size_t(4) * W * H);
   for (size_t i = 0; i < planes.size(); ++i) planes[i] = float(int(i * 37 % 101) - 50) / 25.0f;
