@@ -201,6 +201,16 @@ TEST(Raster, NonMultipleOfTileAndOnePixelViewports) {
   }
 }
 
+// Tile coordinates are binned in 16 bits: 65,536 tiles of 64 pixels (2^22 pixels) a side are
+// the most a viewport may have; one pixel more is refused, in either direction.
+TEST(Raster, ViewportsBeyondTheTileIndexRangeAreRefused) {
+  const int most = 65536 * kTileSize;
+  EXPECT_NO_THROW(bin_triangles({}, mat4(1.0f), CullMode::None, most, 1));
+  EXPECT_NO_THROW(bin_triangles({}, mat4(1.0f), CullMode::None, 1, most));
+  EXPECT_THROW(bin_triangles({}, mat4(1.0f), CullMode::None, most + 1, 1), std::invalid_argument);
+  EXPECT_THROW(bin_triangles({}, mat4(1.0f), CullMode::None, 1, most + 1), std::invalid_argument);
+}
+
 // Random triangles in front of the camera; the depth buffer must not depend on threads.
 TEST(Raster, DepthIdenticalForAnyThreadCount) {
   std::mt19937 rng(7);
