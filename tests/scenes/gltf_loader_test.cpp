@@ -89,6 +89,72 @@ TEST(Gltf, NodeTransformsGiveTheHandComputedPositions) {
   }
 }
 
+// A scale of (2, 3, 4) stretches each axis by its own factor: the corners e_i become s_i·e_i.
+TEST(Gltf, NonUniformScaleStretchesEachAxis) {
+  GltfWriter w;
+  const int mesh = w.mesh({triangle()}, "tri");
+  w.json["nodes"] = json::array({{{"scale", {2, 3, 4}}, {"mesh", mesh}}});
+  w.json["scenes"] = json::array({{{"nodes", {0}}}});
+  const std::string path = scratch("stretch.gltf");
+  w.write(path);
+  const Scene s = load_gltf_scene(path, {}, nullptr, nullptr);
+  ASSERT_EQ(s.meshes.size(), 1u);
+  expect_near(s.meshes[0].positions[0], vec3(2, 0, 0), 1e-6f, "S·e_x");
+  expect_near(s.meshes[0].positions[1], vec3(0, 3, 0), 1e-6f, "S·e_y");
+  expect_near(s.meshes[0].positions[2], vec3(0, 0, 4), 1e-6f, "S·e_z");
+}
+
+// One triangle with one material and one point light, edited by `edit`; the loaded scene.
+Scene one_material_scene(const std::string& file, const json& material, const json& light) {
+  GltfWriter w;
+  w.mesh({triangle()}, "tri");
+  w.json["materials"] = json::array({material});
+  w.json["meshes"][0]["primitives"][0]["material"] = 0;
+  w.json["extensionsUsed"] = {"KHR_lights_punctual"};
+  w.json["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
+  w.json["nodes"] = json::array(
+      {{{"mesh", 0}}, {{"translation", {0.2, 0.3, 0.4}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}});
+  w.json["scenes"] = json::array({{{"nodes", {0, 1}}}});
+  const std::string path = scratch(file);
+  w.write(path);
+  return load_gltf_scene(path, {}, nullptr, nullptr);
+}
+
+// glTF 2.0: alphaCutoff defaults to 0.5 and applies to MASK only; BLEND (no translucency here)
+// becomes MASK at 0.5 whatever cutoff the file gives. A point light's range is its far plane,
+// small ranges included.
+TEST(Gltf, CutoffDefaultsAndBlendAndRangeFollowTheSpecification) {
+  const json point = {{"type", "point"}, {"range", 0.75}};
+  const Scene mask = one_material_scene("mask_default.gltf", {{"alphaMode", "MASK"}}, point);
+  EXPECT_FLOAT_EQ(mask.materials[size_t(mask.meshes[0].material)].alpha_cutoff, 0.5f);
+  const Scene mask9 = one_material_scene("mask9.gltf", {{"alphaMode", "MASK"}, {"alphaCutoff", 0.9}}, point);
+  EXPECT_FLOAT_EQ(mask9.materials[size_t(mask9.meshes[0].material)].alpha_cutoff, 0.9f);
+  const Scene blend = one_material_scene("blend.gltf", {{"alphaMode", "BLEND"}, {"alphaCutoff", 0.9}}, point);
+  const Material& b = blend.materials[size_t(blend.meshes[0].material)];
+  EXPECT_FLOAT_EQ(b.alpha_cutoff, 0.5f);
+  EXPECT_GE(b.alpha_texture, 0);
+  EXPECT_FLOAT_EQ(mask.light.far, 0.75f);
+  EXPECT_LE(mask.light.near, 0.75e-3f);
+}
+
+// KHR_lights_punctual allows outer cone angles up to π/2; the projector takes fields of view
+// below 2 × 1.48 rad (170°) and refuses wider spots in one line.
+TEST(Gltf, SpotConesWiderThanTheProjectorTakesAreRefused) {
+  const json opaque = {{"name", "plain"}};
+  for (const double outer : {0.2, 1.47}) {
+    const Scene s = one_material_scene("spot_ok.gltf", opaque, {{"type", "spot"}, {"spot", {{"outerConeAngle", outer}}}});
+    EXPECT_NEAR(s.projector.fov_y_deg, 2 * outer * 180.0 / M_PI, 1e-3) << outer;
+  }
+  for (const double outer : {1.49, 1.57}) {
+    try {
+      one_material_scene("spot_wide.gltf", opaque, {{"type", "spot"}, {"spot", {{"outerConeAngle", outer}}}});
+      ADD_FAILURE() << outer;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("outerConeAngle must be in (0, 1.48) rad"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // A lit scene: floor, box, an alpha-masked card with a checkerboard alpha, a point light (range,
 // extras.radius), a spot light and a perspective camera. Returns the path.
 std::string lit_scene(const std::string& file, bool with_light = true, bool with_camera = true) {

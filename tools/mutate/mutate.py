@@ -9,7 +9,7 @@ does not compile, and survives otherwise. Results go to a state file one line pe
 interrupted run resumes where it stopped; `--report` prints the per-folder table and every
 survivor's diff, less the mutants listed as equivalent in tools/mutate/equivalent.txt.
 
-  cmake -S . -B build-mut -DCMAKE_BUILD_TYPE=Release -DSHADOWLAB_UNITY=OFF
+  cmake -S . -B build-mut -DCMAKE_BUILD_TYPE=Release -DSHADOWLAB_UNITY=OFF -DSHADOWLAB_BOUNDS_TRAP=ON
   python3 tools/mutate/mutate.py --build build-mut --folder metric --sample 60
   python3 tools/mutate/mutate.py --build build-mut --report
 """
@@ -136,9 +136,13 @@ def run(a):
     if not os.path.isfile(os.path.join(a.build, "CMakeCache.txt")):
         fail("--build", f"'{a.build}' is not a configured CMake build folder")
     with open(os.path.join(a.build, "CMakeCache.txt"), encoding="utf-8", errors="replace") as f:
-        if "SHADOWLAB_UNITY:BOOL=ON" in f.read():
-            fail("--build", f"'{a.build}' compiles unity batches (each mutant would rebuild 16 files): "
-                 "configure it with -DSHADOWLAB_UNITY=OFF")
+        cache = f.read()
+    if "SHADOWLAB_UNITY:BOOL=OFF" not in cache:
+        fail("--build", f"'{a.build}' compiles unity batches (each mutant would rebuild 16 files): "
+             "configure it with -DSHADOWLAB_UNITY=OFF")
+    if "SHADOWLAB_BOUNDS_TRAP:BOOL=ON" not in cache:
+        fail("--build", f"'{a.build}' does not check array bounds (a mutant indexing past a fixed-size "
+             "array would survive unseen): configure it with -DSHADOWLAB_BOUNDS_TRAP=ON")
     target = a.test or FOLDER_TESTS.get(a.folder.split("/")[0])
     targets = target.split(",") if target else []
     if not target:
