@@ -60,8 +60,9 @@ json digest(const Scene& s) {
                  {"width", s.camera.width}, {"height", s.camera.height}};
   j["light"] = {{"position", v3(s.light.position)}, {"radius", r6(s.light.radius)},
                 {"near", r6(s.light.near)}, {"far", r6(s.light.far)}};
-  j["projector"] = {{"enabled", s.projector.enabled}};
-  if (s.projector.enabled)
+  // A posed projector's pose is the scene's even when --slide is what enables it.
+  j["projector"] = {{"enabled", s.projector.enabled}, {"posed", s.projector.posed}};
+  if (s.projector.enabled || s.projector.posed)
     j["projector"].update({{"position", v3(s.projector.position)}, {"direction", v3(s.projector.direction)},
                            {"up", v3(s.projector.up)}, {"fov_y_deg", r6(s.projector.fov_y_deg)},
                            {"aspect", r6(s.projector.aspect)}});

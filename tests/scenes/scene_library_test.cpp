@@ -245,7 +245,25 @@ TEST(SceneLibrary, ObjSceneIsFramedFromItsBounds) {
   EXPECT_GT(s.light.radius, 0.0f);
   add_ground_plane(s);
   EXPECT_NO_THROW(validate_scene(s, path));
-  EXPECT_EQ(s.meshes.back().name, "ground");
+  ASSERT_EQ(s.meshes.back().name, "ground");
+  // The ground: a flat square under the model (at its lowest y), centred below its bounds'
+  // centre, twice the bounds' diagonal a side (2·√(2² + 3² + 3²) = 2·√22 m), facing up, and
+  // every corner within the light's range.
+  const Mesh& ground = s.meshes.back();
+  const float side = 2.0f * std::sqrt(22.0f);
+  vec3 lo(1e30f), hi(-1e30f);
+  for (const vec3& p : ground.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  EXPECT_EQ(lo.y, 50.0f);
+  EXPECT_EQ(hi.y, 50.0f);
+  EXPECT_NEAR(hi.x - lo.x, side, 1e-4f);
+  EXPECT_NEAR(hi.z - lo.z, side, 1e-4f);
+  EXPECT_NEAR(0.5f * (lo.x + hi.x), 101.0f, 1e-4f);
+  EXPECT_NEAR(0.5f * (lo.z + hi.z), -18.5f, 1e-4f);
+  for (const vec3& n : ground.normals) ASSERT_EQ(n, vec3(0, 1, 0));
+  for (const vec3& p : ground.positions) EXPECT_LT(glm::length(p - s.light.position), s.light.far);
 }
 
 // A model too large to frame automatically is named as such (it used to fail with a message

@@ -95,26 +95,47 @@ def build(build_dir, targets, log):
     return r.returncode == 0
 
 
-def run_tests(build_dir, targets, timeouts, gtest_filter):
+# "BINARY@scalar" and "BINARY@avx2" in --test run the binary with the narrower kernel tables
+# (docs/simd.md), so that code reached only through another table's choice is tested too.
+ISA_ENV = {"scalar": ("SHADOWLAB_SCALAR", "1"), "avx2": ("SHADOWLAB_ISA", "avx2")}
+
+
+def parse_runs(spec):
+    """[(target, isa or None)] of a --test value, or a reason it is not one."""
+    runs = []
+    for item in spec.split(","):
+        target, _, isa = item.partition("@")
+        if not target or (isa and isa not in ISA_ENV):
+            return None
+        runs.append((target, isa or None))
+    return runs
+
+
+def run_tests(build_dir, runs, timeouts, gtest_filter):
     """Runs each binary in turn until one fails: (rc, [first failed test], seconds of each)."""
     times = []
-    for target, timeout in zip(targets, timeouts):
-        rc, failed, secs = run_binary(build_dir, target, timeout, gtest_filter)
+    for (target, isa), timeout in zip(runs, timeouts):
+        rc, failed, secs = run_binary(build_dir, target, isa, timeout, gtest_filter)
         times.append(secs)
         if rc != 0:
             return rc, failed, times
     return 0, [], times
 
 
-def run_binary(build_dir, target, timeout, gtest_filter):
+def run_binary(build_dir, target, isa, timeout, gtest_filter):
     exe = os.path.join(build_dir, "tests", target)
+    env = dict(os.environ)
+    for name, _ in ISA_ENV.values():
+        env.pop(name, None)
+    if isa:
+        env[ISA_ENV[isa][0]] = ISA_ENV[isa][1]
     cmd = [exe, "--gtest_fail_fast", "--gtest_brief=1"]
     if gtest_filter:
         cmd.append("--gtest_filter=" + gtest_filter)
     t0 = time.monotonic()
     try:
         r = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, timeout=timeout)
+                           text=True, timeout=timeout, env=env)
         rc, out = r.returncode, r.stdout
     except subprocess.TimeoutExpired as e:
         rc, out = "timeout", (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
@@ -144,9 +165,13 @@ def run(a):
         fail("--build", f"'{a.build}' does not check array bounds (a mutant indexing past a fixed-size "
              "array would survive unseen): configure it with -DSHADOWLAB_BOUNDS_TRAP=ON")
     target = a.test or FOLDER_TESTS.get(a.folder.split("/")[0])
-    targets = target.split(",") if target else []
     if not target:
         fail("--folder", f"no test binary known for '{a.folder}' (give --test)")
+    runs = parse_runs(target)
+    if runs is None:
+        fail("--test", f"'{target}' is not a comma-separated list of test binaries, each optionally "
+             "followed by @scalar or @avx2")
+    targets = sorted({t for t, _ in runs})
     files = folder_files(a.folder)
     if not files:
         fail("--folder", f"'{a.folder}' has no C++ sources")
@@ -179,7 +204,7 @@ def run(a):
           f"tests: {target}", flush=True)
     if not build(a.build, targets, log):
         fail("--build", f"the unmutated sources do not build {target} (log: {state_path}.buildlog)")
-    rc, failed, base = run_tests(a.build, targets, [None] * len(targets), a.gtest_filter)
+    rc, failed, base = run_tests(a.build, runs, [None] * len(runs), a.gtest_filter)
     if rc != 0:
         fail("--folder", f"{target} fails before any mutation: {failed}")
     timeouts = [max(10.0, a.timeout_factor * b) for b in base]
@@ -200,7 +225,7 @@ def run(a):
                 if not build(a.build, targets, None):
                     status, detail = "stillborn", ""
                 else:
-                    rc, failed, _ = run_tests(a.build, targets, timeouts, a.gtest_filter)
+                    rc, failed, _ = run_tests(a.build, runs, timeouts, a.gtest_filter)
                     status = "survived" if rc == 0 else "killed"
                     detail = "timeout" if rc == "timeout" else (failed[0] if failed else f"exit {rc}")
             finally:
@@ -252,7 +277,8 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog=PROGRAM, description=__doc__.splitlines()[0])
     p.add_argument("--build", required=True, help="a configured CMake build folder used only for this")
     p.add_argument("--folder", help="a source folder: " + ", ".join(sorted(FOLDER_TESTS)) + " (or a sub-folder)")
-    p.add_argument("--test", help="test binary targets, comma-separated, run in turn (default: the folder's)")
+    p.add_argument("--test", help="test binary targets, comma-separated, run in turn (default: the folder's); "
+                   "BINARY@scalar or BINARY@avx2 runs it with those kernel tables")
     p.add_argument("--gtest-filter", help="run only these tests of the binary")
     p.add_argument("--sample", type=int, help="draw this many mutants (default: all)")
     p.add_argument("--seed", type=int, default=1)

@@ -96,3 +96,11 @@ def test_the_draw_depends_on_the_seed_only():
     assert one == [m.id for m in mutate.sample(ms, 5, 1)]
     assert one != [m.id for m in mutate.sample(ms, 5, 2)]
     assert len(set(one)) == 5
+
+
+def test_test_runs_name_binaries_and_their_kernel_tables():
+    assert mutate.parse_runs("test_raster") == [("test_raster", None)]
+    assert mutate.parse_runs("test_raster,test_raster@scalar,test_raytrace@avx2") == [
+        ("test_raster", None), ("test_raster", "scalar"), ("test_raytrace", "avx2")]
+    for bad in ("test_raster@sse9", "@scalar", "test_raster,,test_raytrace"):
+        assert mutate.parse_runs(bad) is None, bad
