@@ -147,6 +147,14 @@ std::string masking_tables(const MaskingResult& r) {
   return s;
 }
 
+std::string masking_slide_label(const std::string& s) {
+  const size_t a = s.find("amp="), f = s.find("freq=");
+  if (a == std::string::npos || f == std::string::npos) return s;
+  // Each value runs to the next ',' or the end, whichever key comes first.
+  auto value = [&](size_t from) { return s.substr(from, s.find(',', from) - from); };
+  return "A" + value(a + 4) + " F" + value(f + 5);
+}
+
 void write_masking_csv(const std::string& path, const MaskingResult& r) {
   std::ostringstream f;
   f << "level,triangles,slide,ssim,rmse,visible,visible_masked,camera_ms,shadow_ms\n";
@@ -170,18 +178,7 @@ ImageF masking_contact_sheet(const MaskingResult& r, int max_cell_width) {
     for (const MaskingCell& c : L.cells) row.push_back(&c.shaded_luma);
     cells.push_back(row);
   }
-  for (const std::string& s : r.slides) {
-    // "grid:amp=1,freq=15" → "A1 F15"
-    std::string label = s;
-    const size_t a = s.find("amp="), f = s.find("freq=");
-    if (a != std::string::npos && f != std::string::npos) {
-      label.assign(1, 'A');  // (not = "A": GCC 12 -Wrestrict false positive)
-      label.append(s, a + 4, s.find(',', a) - a - 4);
-      label.append(" F");
-      label.append(s, f + 5, std::string::npos);
-    }
-    cols.push_back(label);
-  }
+  for (const std::string& s : r.slides) cols.push_back(masking_slide_label(s));
   ContactSheetStyle style;
   style.max_cell_width = max_cell_width;
   return contact_sheet(rows, cols, cells, nullptr, style);

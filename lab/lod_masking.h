@@ -55,6 +55,9 @@ std::string masking_tables(const MaskingResult& result);
 void write_masking_csv(const std::string& path, const MaskingResult& result);
 // Contact sheet in the layout of the paper's Figures 6–9: one row per level, one column per
 // slide, shaded luminance, cells box-downscaled to at most max_cell_width px.
+// A slide's column label on the sheet: "grid:amp=1,freq=15" → "A1 F15" (any order of the two
+// keys); a slide without both keys keeps its name.
+std::string masking_slide_label(const std::string& slide);
 ImageF masking_contact_sheet(const MaskingResult& result, int max_cell_width = 256);
 
 }  // namespace shadowlab

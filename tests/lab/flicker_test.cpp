@@ -162,6 +162,24 @@ TEST(Flicker, PathsMoveAsDocumented) {
   const vec3 j2 = flicker_frame_scene(s, c, step, 2).light.position - s.light.position;
   for (int a = 0; a < 3; ++a) EXPECT_LE(std::fabs(j1[a]), step * (1 + 1e-5));
   EXPECT_GT(glm::length(j1 - j2), 0.1 * step);
+  // Uniform on [−step, step) per axis: over 256 frames every offset is inside, each axis has
+  // both signs, and its mean is 0 within 0.2·step (the mean's deviation is
+  // step / √(3 · 256) = 0.036·step).
+  vec3 sum(0.0f);
+  int negative[3] = {0, 0, 0};
+  for (int f = 0; f < 256; ++f) {
+    const vec3 j = flicker_frame_scene(s, c, step, f).light.position - s.light.position;
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_LE(std::fabs(j[a]), step * (1 + 1e-5)) << "frame " << f;
+      negative[a] += j[a] < 0.0f;
+    }
+    sum += j;
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(sum[a] / 256.0, 0.0, 0.2 * step) << "axis " << a;
+    EXPECT_GT(negative[a], 64) << "axis " << a;
+    EXPECT_LT(negative[a], 192) << "axis " << a;
+  }
   // Snapping: every coordinate the base's plus a multiple of the grid, within half a cell of
   // the true one.
   c.path = FlickerPath::LightLine;

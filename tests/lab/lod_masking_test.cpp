@@ -41,10 +41,25 @@ TEST(LodMasking, FullMeshIsItsOwnReferenceAndCoarserLevelsDiffer) {
       EXPECT_LE(cell.visible.masked, cell.visible.plain);
     }
   EXPECT_LT(r.levels[1].cells[0].ssim, r.levels[2].cells[0].ssim);
+  // The text: one cost line per level, with its triangle count and where its mesh came from.
+  const std::string text = masking_tables(r);
+  const size_t costs = text.find("level costs");
+  ASSERT_NE(costs, std::string::npos);
+  EXPECT_NE(text.find("69451", costs), std::string::npos);
+  EXPECT_NE(text.find("original", costs), std::string::npos);
+  EXPECT_NE(text.find(std::to_string(r.levels[1].triangles), costs), std::string::npos);
+  EXPECT_NE(text.find(std::to_string(r.levels[2].triangles), costs), std::string::npos);
   // The sheet: one row per level, one column per slide.
   const ImageF sheet = masking_contact_sheet(r);
   EXPECT_GT(sheet.width, 2 * 160);
   EXPECT_GT(sheet.height, 3 * 120);
+}
+
+TEST(LodMasking, SlideLabelsAreAmplitudeAndFrequency) {
+  EXPECT_EQ(masking_slide_label("grid:amp=1,freq=15"), "A1 F15");
+  EXPECT_EQ(masking_slide_label("grid:amp=0.25,freq=0"), "A0.25 F0");
+  EXPECT_EQ(masking_slide_label("grid:freq=7,amp=3"), "A3 F7");
+  EXPECT_EQ(masking_slide_label("spot"), "spot");
 }
 
 TEST(LodMasking, BadSlideNamesTheFlag) {

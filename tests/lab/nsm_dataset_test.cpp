@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "lab/nsm_dataset.h"
 #include "scenes/scene_registry.h"
+#include "test_paths.h"
 
 namespace shadowlab {
 // A named namespace: the unity build compiles several test files in one translation unit.
@@ -110,6 +112,28 @@ TEST(NsmDataset, SplitFractionsAndHeldOutScenes) {
   p.test = {{"plane"}, 0.0};
   p.val = {{}, 0.0};
   for (int i = 0; i < 10; ++i) EXPECT_EQ(nsm_frame_split(p, i), i % 2 ? "test" : "train");
+}
+
+// The progress counter counts the frames written, from 1/N to N/N, and ends its line.
+TEST(NsmDataset, ProgressCountsFromOneToTheFrameCount) {
+  NsmDatasetParams p;
+  p.frames = 2;
+  p.width = 32;
+  p.height = 24;
+  p.crop_w = 16;
+  p.crop_h = 12;
+  p.spp = 1;
+  p.base_res = 32;
+  p.radii = {0.0};
+  p.val = {{}, 0.0};
+  p.test = {{}, 0.0};
+  check_nsm_dataset_params(p);
+  const std::string dir = test::binary_path("nsm_dataset_progress");
+  std::filesystem::remove_all(dir);
+  testing::internal::CaptureStderr();
+  write_nsm_dataset(p, dir, {"nsm_data"}, true);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err, "\rnsm_data: frame 1/2\rnsm_data: frame 2/2\n");
 }
 
 }  // namespace nsm_dataset_test

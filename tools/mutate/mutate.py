@@ -14,9 +14,9 @@ survivor's diff, less the mutants listed as equivalent in tools/mutate/equivalen
   python3 tools/mutate/mutate.py --build build-mut --report
 """
 import argparse
+import hashlib
 import json
 import os
-import random
 import subprocess
 import sys
 import time
@@ -57,8 +57,12 @@ def all_mutants(folder, files=None):
 
 
 def sample(mutants, n, seed):
-    order = list(mutants)
-    random.Random(seed).shuffle(order)
+    """The n mutants whose hash of (seed, id) is smallest: a mutant's place in the draw depends on
+    its own id only, so an edit elsewhere in the folder adds or removes its own mutants and
+    leaves the rest of the sample as it was."""
+    def key(m):
+        return hashlib.sha256(f"{seed}:{m.id}".encode()).hexdigest()
+    order = sorted(mutants, key=key)
     return order if n is None else order[:n]
 
 

@@ -104,3 +104,14 @@ def test_test_runs_name_binaries_and_their_kernel_tables():
         ("test_raster", None), ("test_raster", "scalar"), ("test_raytrace", "avx2")]
     for bad in ("test_raster@sse9", "@scalar", "test_raster,,test_raytrace"):
         assert mutate.parse_runs(bad) is None, bad
+
+
+def test_an_edit_elsewhere_keeps_the_rest_of_the_draw():
+    base = "int f(int a, int b) { return a * 3 + b * 5 - (a < b ? 7 : 9); }\n"
+    more = base + "int g(int c) { return c + 11; }\n"
+    one = {m.id for m in mutate.sample(generate("x.cpp", base), 6, 1)}
+    two = {m.id for m in mutate.sample(generate("x.cpp", more), 6, 1)}
+    # g's mutants may take places in the draw; every other place keeps its mutant.
+    g_ids = {m.id for m in generate("x.cpp", more)} - {m.id for m in generate("x.cpp", base)}
+    assert two - g_ids <= one
+    assert len(one - two) == len(two & g_ids)
