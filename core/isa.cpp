@@ -26,7 +26,10 @@ Isa resolve_process_isa() {
   Isa isa = cpu_isa();
   const char* scalar = std::getenv("SHADOWLAB_SCALAR");
   if (scalar && std::strcmp(scalar, "1") == 0) return Isa::scalar;
+  // SHADOWLAB_ISA names the widest set to use; never wider than the CPU's (the programs refuse
+  // such a request before any work: lab/environment.cpp).
   const char* named = std::getenv("SHADOWLAB_ISA");
+  if (named && std::strcmp(named, "scalar") == 0) return Isa::scalar;
   if (named && std::strcmp(named, "avx2") == 0 && isa > Isa::avx2) isa = Isa::avx2;
   return isa;
 }

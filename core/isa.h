@@ -5,10 +5,10 @@
 // Every kernel family has a scalar table, its oracle, and tables for AVX2 and AVX-512 that give
 // the scalar table's bits (-ffp-contract=off, the same operations in the same order). The
 // process runs the table of process_isa(): the widest set this CPU runs, narrowed by the
-// environment — SHADOWLAB_SCALAR=1 gives scalar, SHADOWLAB_ISA=avx2 gives at most AVX2 (so that
-// both vector tables are measured and tested on one AVX-512 machine). The mains check those
-// variables strictly before any work (lab/environment.cpp); here an unset, empty or
-// other value leaves the CPU's choice.
+// environment — SHADOWLAB_ISA=scalar|avx2|avx512 gives at most that set (so that every table is
+// measured and tested on one machine), SHADOWLAB_SCALAR=1 gives scalar. The mains check those
+// variables strictly before any work, and refuse a set wider than the CPU's
+// (lab/environment.cpp); here an unset, empty or other value leaves the CPU's choice.
 #include <vector>
 
 namespace shadowlab {

@@ -38,6 +38,7 @@ Isa expected_process_isa(Isa cpu) {
   const char* scalar = std::getenv("SHADOWLAB_SCALAR");
   if (scalar && std::strcmp(scalar, "1") == 0) return Isa::scalar;
   const char* named = std::getenv("SHADOWLAB_ISA");
+  if (named && std::strcmp(named, "scalar") == 0) return Isa::scalar;
   if (named && std::strcmp(named, "avx2") == 0 && cpu == Isa::avx512) return Isa::avx2;
   return cpu;
 }

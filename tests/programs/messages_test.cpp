@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "lab/environment.h"
 #include "core/error.h"
+#include "core/isa.h"
+#include "lab/environment.h"
 #include "programs/run_process.h"
 #include "scenes/gltf_writer.h"
 #include "test_paths.h"
@@ -98,8 +99,8 @@ TEST(Messages, TechniqueListErrorsNameTheirFlag) {
 }
 
 // SHADOWLAB_THREADS takes --threads' values (an integer in [1, 1024], no spaces, no '+');
-// SHADOWLAB_ISA is avx2; SHADOWLAB_SCALAR is 0 or 1. Anything else: one line naming the
-// variable, exit code 2, before any work.
+// SHADOWLAB_ISA is scalar, avx2 or avx512, no wider than the CPU; SHADOWLAB_SCALAR is 0 or 1.
+// Anything else: one line naming the variable, exit code 2, before any work.
 TEST(Messages, EnvironmentVariablesFollowTheFlagsRules) {
   const std::string dir = fresh_dir("messages_env");
   const std::string cmd = "render --technique csm:res=32 --width 16 --height 12 --repeats 1 --out " + dir + "/o";
@@ -110,7 +111,8 @@ TEST(Messages, EnvironmentVariablesFollowTheFlagsRules) {
   for (const Case& c : {Case{"SHADOWLAB_THREADS=' 2'", "render: SHADOWLAB_THREADS: expected an integer, got ' 2'"},
                         Case{"SHADOWLAB_THREADS=+2", "render: SHADOWLAB_THREADS: expected an integer, got '+2'"},
                         Case{"SHADOWLAB_THREADS=0", "render: SHADOWLAB_THREADS: 0 is outside [1, 1024]"},
-                        Case{"SHADOWLAB_ISA=sse9", "render: SHADOWLAB_ISA: expected avx2"},
+                        Case{"SHADOWLAB_ISA=sse9", "render: SHADOWLAB_ISA: expected scalar, avx2 or avx512"},
+                        Case{"SHADOWLAB_ISA=AVX2", "render: SHADOWLAB_ISA: expected scalar, avx2 or avx512"},
                         Case{"SHADOWLAB_SCALAR=yes", "render: SHADOWLAB_SCALAR: expected 0 or 1, got 'yes'"}}) {
     const ProcResult r = run_env(c.env, cmd);
     EXPECT_EQ(r.exit_code, 2) << c.env << "\n" << r.err;
@@ -119,13 +121,28 @@ TEST(Messages, EnvironmentVariablesFollowTheFlagsRules) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/o")) << c.env;
   }
   // The good values run; an empty value is the variable unset.
-  for (const char* env : {"SHADOWLAB_THREADS=2 SHADOWLAB_ISA=avx2 SHADOWLAB_SCALAR=1", "SHADOWLAB_THREADS="}) {
+  for (const char* env : {"SHADOWLAB_THREADS=2 SHADOWLAB_ISA=avx2 SHADOWLAB_SCALAR=1", "SHADOWLAB_THREADS=",
+                          "SHADOWLAB_ISA=scalar"}) {
     const ProcResult ok = run_env(env, cmd);
     EXPECT_EQ(ok.exit_code, 0) << env << "\n" << ok.err;
   }
   // The same rules at the library's own reader (tests and other callers than the programs).
   EXPECT_THROW(check_environment_value("SHADOWLAB_THREADS", "2 "), InputError);
   EXPECT_NO_THROW(check_environment_value("SHADOWLAB_THREADS", "1024"));
+  // Every set up to the CPU's widest is taken; a wider one is refused, naming what the CPU runs.
+  for (const Isa isa : {Isa::scalar, Isa::avx2, Isa::avx512}) {
+    if (isa <= cpu_isa()) {
+      EXPECT_NO_THROW(check_environment_value("SHADOWLAB_ISA", isa_name(isa)));
+      continue;
+    }
+    try {
+      check_environment_value("SHADOWLAB_ISA", isa_name(isa));
+      ADD_FAILURE() << isa_name(isa) << " accepted on a CPU that runs at most " << isa_name(cpu_isa());
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("this CPU runs at most ") + isa_name(cpu_isa())),
+                std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
