@@ -1,5 +1,6 @@
 // Every built-in scene against its reviewed layout (tests/data/builtin_scene_digests.json):
-// camera, light, projector and, per mesh, triangle and vertex counts, bounds, uv bounds,
+// camera, light, projector and, per mesh, triangle and vertex counts, bounds, the mean of the
+// vertices (a part moved inside the bounds), uv bounds,
 // albedo, alpha cutoff and which way the normals face (their mean, and their mean component
 // away from the mesh's centre). The file was written from the scenes and
 // reviewed entry by entry against their sources and descriptions (docs/scenes.md: the box,
@@ -73,8 +74,12 @@ json digest(const Scene& s) {
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
+    dvec3 sum(0.0);
+    for (const vec3& p : m.positions) sum += dvec3(p);
+    const vec3 centroid = m.positions.empty() ? vec3(0.0f) : vec3(sum / double(m.positions.size()));
     json jm = {{"name", m.name}, {"triangles", m.triangle_count()}, {"vertices", m.positions.size()},
-               {"lo", v3(lo)}, {"hi", v3(hi)}, {"facing", r6(facing(m, 0.5f * (lo + hi)))},
+               {"lo", v3(lo)}, {"hi", v3(hi)}, {"centroid", v3(centroid)},
+               {"facing", r6(facing(m, 0.5f * (lo + hi)))},
                {"normal", v3(mean_normal(m))}};
     const Material& mat = s.materials[size_t(m.material)];
     jm["albedo"] = v3(mat.albedo);

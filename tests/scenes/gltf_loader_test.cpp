@@ -301,6 +301,15 @@ TEST(Gltf, AlphaMaskBecomesTheAlphaTexture) {
   const Material& mat = s.materials[size_t(leaf->material)];
   ASSERT_GE(mat.alpha_texture, 0);
   EXPECT_FLOAT_EQ(mat.alpha_cutoff, 0.5f);
+  // The albedo is the texture's mean linear colour (factor 1): half the texels (40, 160, 60),
+  // half (255, 0, 0), decoded by the sRGB standard's curve.
+  auto decode = [](double c) {
+    c /= 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  EXPECT_NEAR(mat.albedo.x, 0.5 * (decode(40) + decode(255)), 1e-6);
+  EXPECT_NEAR(mat.albedo.y, 0.5 * (decode(160) + decode(0)), 1e-6);
+  EXPECT_NEAR(mat.albedo.z, 0.5 * (decode(60) + decode(0)), 1e-6);
   const ImageF& t = s.textures[size_t(mat.alpha_texture)];
   ASSERT_EQ(t.width, 8);
   ASSERT_EQ(t.channels, 4);

@@ -210,6 +210,13 @@ TEST(ObjLoader, BadMtlValueAndUnknownMaterialAreErrors) {
   expect_load_error(write_file("uses_bad_kd.obj", "mtllib bad_kd.mtl\n" + std::string(kTriangle) +
                                                       "usemtl a\nf 1 2 3\n"),
                     {"bad_kd.mtl", "line 2"});
+  // "d -halo" takes its value after the option: alone it has none (not "-halo" as a number).
+  write_file("halo.mtl", "newmtl a\nd -halo\n");
+  expect_load_error(write_file("uses_halo.obj", "mtllib halo.mtl\n" + std::string(kTriangle) + "usemtl a\nf 1 2 3\n"),
+                    {"halo.mtl", "line 2", "'d' without a value"});
+  write_file("halo_ok.mtl", "newmtl a\nd -halo 0.5\nKd 1 1 1\n");
+  EXPECT_NO_THROW(load_obj_scene(write_file("uses_halo_ok.obj", "mtllib halo_ok.mtl\n" + std::string(kTriangle) +
+                                                                   "usemtl a\nf 1 2 3\n")));
   write_file("good.mtl", "newmtl a\nKd 0.5 0.25 1\n");
   expect_load_error(
       write_file("unknown_material.obj",

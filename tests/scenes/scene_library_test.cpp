@@ -242,6 +242,13 @@ TEST(SceneLibrary, ObjSceneIsFramedFromItsBounds) {
     EXPECT_GT(glm::length(corner - s.light.position), s.light.near);
   }
   EXPECT_GT(s.light.position.y, b.hi.y) << "light above the model";
+  // The documented framing (scene_library.h): fov_y 60°, the eye along (0, 1, 1) from the
+  // bounds centre at d = 1.05·r / sin(30°), r half the bounds diagonal.
+  const float r = 0.5f * glm::length(b.extent());
+  EXPECT_EQ(s.camera.fov_y_deg, 60.0f);
+  EXPECT_NEAR(glm::length(s.camera.eye - b.centre()), 1.05f * r / 0.5f, 1e-4f);
+  EXPECT_NEAR(glm::dot(glm::normalize(s.camera.eye - b.centre()), glm::normalize(vec3(0, 1, 1))), 1.0f, 1e-6f);
+  EXPECT_EQ(s.camera.target, b.centre());
   EXPECT_GT(s.light.radius, 0.0f);
   add_ground_plane(s);
   EXPECT_NO_THROW(validate_scene(s, path));
@@ -264,6 +271,17 @@ TEST(SceneLibrary, ObjSceneIsFramedFromItsBounds) {
   EXPECT_NEAR(0.5f * (lo.z + hi.z), -18.5f, 1e-4f);
   for (const vec3& n : ground.normals) ASSERT_EQ(n, vec3(0, 1, 0));
   for (const vec3& p : ground.positions) EXPECT_LT(glm::length(p - s.light.position), s.light.far);
+  // A light far off to one side: the ground's farthest corner from it sets the range.
+  for (const vec3 off : {vec3(30, 5, 2), vec3(-25, 4, 20), vec3(3, 6, -40), vec3(-20, 3, -20)}) {
+    Scene t = make_obj_scene(path);
+    t.light.position = b.centre() + off;
+    t.light.far = 1.0f;
+    add_ground_plane(t);
+    float farthest = 0.0f;
+    for (const vec3& p : t.meshes.back().positions) farthest = std::max(farthest, glm::length(p - t.light.position));
+    EXPECT_GE(t.light.far, farthest) << off.x << "," << off.z;
+    EXPECT_LE(t.light.far, 1.03f * farthest) << off.x << "," << off.z;
+  }
 }
 
 // A model too large to frame automatically is named as such (it used to fail with a message
