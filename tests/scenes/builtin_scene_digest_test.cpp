@@ -1,6 +1,6 @@
 // Every built-in scene against its reviewed layout (tests/data/builtin_scene_digests.json):
 // camera, light, projector and, per mesh, triangle and vertex counts, bounds, the mean of the
-// vertices (a part moved inside the bounds), uv bounds,
+// vertices (a part moved inside the bounds), the surface area (a degenerate triangle), uv bounds,
 // albedo, alpha cutoff and which way the normals face (their mean, and their mean component
 // away from the mesh's centre). The file was written from the scenes and
 // reviewed entry by entry against their sources and descriptions (docs/scenes.md: the box,
@@ -47,6 +47,17 @@ double facing(const Mesh& m, const vec3& c) {
   return n ? sum / double(n) : 0.0;
 }
 
+// Sum of the triangles' areas, m².
+double area(const Mesh& m) {
+  double sum = 0.0;
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const dvec3 a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]),
+        c(m.positions[m.indices[3 * t + 2]]);
+    sum += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  return sum;
+}
+
 // Mean of the vertex normals: a flat mesh's normal (its facing is 0: every n · (p − c) is).
 vec3 mean_normal(const Mesh& m) {
   dvec3 sum(0.0);
@@ -78,7 +89,7 @@ json digest(const Scene& s) {
     for (const vec3& p : m.positions) sum += dvec3(p);
     const vec3 centroid = m.positions.empty() ? vec3(0.0f) : vec3(sum / double(m.positions.size()));
     json jm = {{"name", m.name}, {"triangles", m.triangle_count()}, {"vertices", m.positions.size()},
-               {"lo", v3(lo)}, {"hi", v3(hi)}, {"centroid", v3(centroid)},
+               {"lo", v3(lo)}, {"hi", v3(hi)}, {"centroid", v3(centroid)}, {"area", r6(area(m))},
                {"facing", r6(facing(m, 0.5f * (lo + hi)))},
                {"normal", v3(mean_normal(m))}};
     const Material& mat = s.materials[size_t(m.material)];

@@ -391,6 +391,9 @@ TEST(ObjLoader, ViewHeaderTyposAreErrors) {
   expect_header_error("typo_light.obj", "# point ligth (0,4,0), near 0.05 far 40\n", "'ligth'");
   expect_header_error("typo_target.obj", "# camera eye (0,4.5,9.5) targte (0,3,0)\n", "'targte'");
   expect_header_error("typo_near.obj", "# light (0,4,0) naer 0.05 far 40\n", "misspelled 'near'");
+  // Two edits: two letters replaced ("noxr"), or one replaced and one dropped ("fr").
+  expect_header_error("typo_near2.obj", "# light (0,4,0) noxr 0.05 far 40\n", "misspelled 'near'");
+  expect_header_error("typo_far2.obj", "# light (0,4,0) near 0.05 fr 40\n", "misspelled 'far'");
   expect_header_error("typo_fov.obj", "# camera eye (0,1,5) target (0,0,0) vertical fvo 45\n", "misspelled 'fov'");
   // Malformed positions and a misspelled "camera" drop nothing silently either.
   expect_header_error("short_eye.obj", "# camera eye (0,1) target (0,0,0)\n", "'eye' is followed by a malformed position");

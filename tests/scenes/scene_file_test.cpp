@@ -102,6 +102,28 @@ TEST(SceneFile, FramedWithoutBaseAndGround) {
   expect_near(glm::normalize(glm::cross(b - a, c - a)), glm::normalize(vec3(-1, 1, 1)), "front after the mirror");
 }
 
+// A mirroring scale reverses every triangle's winding back, not only the first: a strip of four
+// triangles facing +y (their normals given in the file) still faces +y mirrored in x or in z.
+TEST(SceneFile, MirroredModelsKeepEveryTriangleFacingItsNormals) {
+  write("strip.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 -1\nv 1 0 -1\nv 2 0 -1\nvn 0 1 0\n"
+        "f 1//1 2//1 5//1\nf 1//1 5//1 4//1\nf 2//1 3//1 6//1\nf 2//1 6//1 5//1\n");
+  for (const char* scale : {"[-1, 1, 1]", "[1, 1, -2]"}) {
+    const Scene s = load_scene_file(write("mirror.json", std::string(R"({"models": [{"file": "strip.obj", "scale": )") +
+                                                            scale + R"(}], "ground": {"size": 4}})"));
+    const Mesh* strip = find(s, "strip");
+    ASSERT_NE(strip, nullptr);
+    ASSERT_EQ(strip->triangle_count(), 4u);
+    for (size_t t = 0; t < 4; ++t) {
+      const vec3 a = strip->positions[strip->indices[3 * t]], b = strip->positions[strip->indices[3 * t + 1]],
+                 c = strip->positions[strip->indices[3 * t + 2]];
+      const vec3 front = glm::cross(b - a, c - a);
+      EXPECT_GT(front.y, 0.0f) << scale << " triangle " << t;
+      EXPECT_EQ(strip->normals[strip->indices[3 * t]], vec3(0, 1, 0)) << scale;
+    }
+  }
+}
+
 TEST(SceneFile, ProjectorKey) {
   const std::string path = write("projector.json", R"({
     "base": "plane",
