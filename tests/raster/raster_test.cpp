@@ -201,6 +201,17 @@ TEST(Raster, NonMultipleOfTileAndOnePixelViewports) {
   }
 }
 
+// A viewport without pixels (zero width or height) draws nothing, whatever the triangles.
+TEST(Raster, EmptyViewportsDrawNothing) {
+  Soup soup;
+  soup.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  soup.indices = {0, 1, 2, 0, 2, 3};
+  for (const auto& [w, h] : {std::pair{64, 0}, std::pair{0, 64}, std::pair{0, 0}}) {
+    const std::vector<int> counts = count_coverage(soup, w, h);
+    EXPECT_TRUE(counts.empty()) << w << "x" << h;
+  }
+}
+
 // Tile coordinates are binned in 16 bits: 65,536 tiles of 64 pixels (2^22 pixels) a side are
 // the most a viewport may have; one pixel more is refused, in either direction.
 TEST(Raster, ViewportsBeyondTheTileIndexRangeAreRefused) {

@@ -90,6 +90,10 @@ def mask(text):
     return "".join(out)
 
 
+# Functions whose two arguments commute exactly (each product a·b = b·a in IEEE arithmetic, the
+# sum in the same order): swapping them is always an equivalent mutant.
+SYMMETRIC = {"dot", "distance"}
+
 # Binary operators written with a space on each side (the code's format), and their swaps.
 OPERATOR_SWAPS = {
     "<": ["<=", ">"], "<=": ["<", ">="], ">": [">=", "<"], ">=": [">", "<="],
@@ -214,7 +218,7 @@ def generate(path, text):
         for rep in _constants(lit, exp, suffix):
             raw.append((mo.start(), mo.end(), rep, f"const {lit}{exp} -> {rep}"))
     for mo in CALL2_RE.finditer(m):
-        if mo.group(1).split("::")[-1] in KEYWORDS:
+        if mo.group(1).split("::")[-1] in KEYWORDS | SYMMETRIC:
             continue
         a, b = mo.group(2), mo.group(3)
         if a == b:

@@ -76,6 +76,9 @@ def test_swapped_arguments_clamp_min_max_and_early_exit():
     src = "int m(int a, int b) { return std::min(a, b + 1); }\n"
     out = edits(src, "drop min")
     assert out == sorted(["int m(int a, int b) { return a; }\n", "int m(int a, int b) { return b + 1; }\n"])
+    # dot and distance commute exactly: no swap is made of them.
+    assert edits("float d(vec3 a, vec3 b) { return glm::dot(a, b) + pow(a.x, b.x); }\n", "swap") == [
+        "float d(vec3 a, vec3 b) { return glm::dot(a, b) + pow(b.x, a.x); }\n"]
     src = "int e(int n) {\n  if (n == 0) return -1;\n  return n;\n}\n"
     assert edits(src, "drop early") == ["int e(int n) {\n\n  return n;\n}\n"]
 
