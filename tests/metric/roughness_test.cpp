@@ -22,6 +22,16 @@ TEST(Roughness, RobertsCrossOfTwoByTwoBlocks) {
   EXPECT_DOUBLE_EQ(roberts_cross(m, 0, 0), 1.0);
 }
 
+// The 2 × 2 block must lie inside the image: its last top-left corner is (w − 2, h − 2).
+TEST(RoughnessDeathTest, RobertsCrossOutsideTheImageIsACheckFailure) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const ImageF m(3, 2, 1, 0.0f);
+  EXPECT_DEATH(roberts_cross(m, 2, 0), "CHECK");
+  EXPECT_DEATH(roberts_cross(m, 0, 1), "CHECK");
+  EXPECT_DEATH(roberts_cross(m, -1, 0), "CHECK");
+  EXPECT_EQ(roberts_cross(m, 1, 0), 0.0);
+}
+
 TEST(Roughness, ScoreFormula) {
   EXPECT_DOUBLE_EQ(roughness_score(0.3, 0.1), 0.7 / 0.9);
   EXPECT_EQ(roughness_score(0.05, 0.1), 1.0);  // smoother than the reference: capped at 1

@@ -248,10 +248,17 @@ def run(a):
     return report(state_path)
 
 
-def report(state_path):
+def report(state_path, drawn=None):
+    """The per-folder table and every survivor: of every result in the state file, or only of
+    the mutants in `drawn` (a folder's draw; those not run yet are counted as such)."""
     done = load_state(state_path)
     eq = load_equivalent()
     folders = {}
+    if drawn is not None:
+        missing = [m for m in drawn if m.id not in done]
+        done = {m.id: done[m.id] for m in drawn if m.id in done}
+        if missing:
+            print(f"{len(missing)} of the {len(drawn)} drawn mutants have no result yet")
     for r in done.values():
         f = folders.setdefault(r["folder"], {"mutants": 0, "stillborn": 0, "killed": 0,
                                              "equivalent": 0, "survived": []})
@@ -292,14 +299,21 @@ def main(argv=None):
     p.add_argument("--retry-survivors", action="store_true",
                    help="run the drawn mutants that survived before again (after adding tests)")
     p.add_argument("--list", action="store_true", help="print the drawn mutants and stop")
-    p.add_argument("--report", action="store_true", help="print the table of the state file and stop")
+    p.add_argument("--report", action="store_true",
+                   help="print the table of the state file (with --folder: of that draw) and stop")
     a = p.parse_args(argv)
     if a.sample is not None and a.sample < 1:
         fail("--sample", f"{a.sample}: must be at least 1")
     if a.timeout_factor <= 1:
         fail("--timeout-factor", f"{a.timeout_factor}: must exceed 1")
     if a.report:
-        return report(a.state or os.path.join(a.build, "mutate_state.jsonl"))
+        drawn = None
+        if a.folder:  # the table of this folder's draw only
+            files = folder_files(a.folder)
+            if a.no_headers:
+                files = [f for f in files if f.endswith(".cpp")]
+            drawn = sample(all_mutants(a.folder, files), a.sample, a.seed)
+        return report(a.state or os.path.join(a.build, "mutate_state.jsonl"), drawn)
     if not a.folder:
         fail("--folder", "needed unless --report")
     if not os.path.isdir(os.path.join(ROOT, a.folder)):
