@@ -250,6 +250,45 @@ TEST(Flip, UniformShiftIsTheHandComputedColourError) {
     ASSERT_NEAR(v, double(want3), 1e-7);
 }
 
+// Dark colours, whose XYZ lie below CIELAB's knee (6/29)³ where f(t) = t / (3·(6/29)²) + 4/29:
+// the colour error against the brute force. Hunt's a and b scale with L, so an offset in f,
+// which cancels in ΔL, shows in them.
+TEST(Flip, DarkColoursFollowCielabsLinearSegment) {
+  const C3 pairs[][2] = {{{0.004L, 0.001L, 0.0L}, {0.0L, 0.002L, 0.004L}},
+                         {{0.0L, 0.0L, 0.0L}, {0.006L, 0.0L, 0.003L}},
+                         {{0.002L, 0.003L, 0.001L}, {0.03L, 0.01L, 0.02L}}};
+  for (const auto& p : pairs) {
+    const LD want = colour_error(hyab(hunt_lab(p[1]), hunt_lab(p[0])), cmax_bf());
+    const ImageF e = flip_error_map(flat(24, 20, float(p[1].a), float(p[1].b), float(p[1].c)),
+                                    flat(24, 20, float(p[0].a), float(p[0].b), float(p[0].c)));
+    ASSERT_GT(want, 0.01L);
+    for (float v : e.data) ASSERT_NEAR(v, double(want), 1e-6) << double(p[1].a);
+  }
+}
+
+// A grey image and its three-channel copy are the same picture (the grey path and the colour
+// path give the same CIELAB), so FLIP between them is 0 everywhere; and the error map has the
+// images' width and height.
+TEST(Flip, AGreyImageAndItsColourCopyAgree) {
+  const ImageF grey = mask_scene(40, 30, 3, 0.0f);
+  ImageF colour(40, 30, 3);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x)
+      for (int c = 0; c < 3; ++c) colour.data[size_t(c) * 1200 + size_t(y) * 40 + size_t(x)] = grey.at(x, y);
+  const ImageF e = flip_error_map(colour, grey);
+  EXPECT_EQ(e.width, 40);
+  EXPECT_EQ(e.height, 30);
+  EXPECT_EQ(e.channels, 1);
+  for (float v : e.data) ASSERT_LT(v, 5e-5f);  // the two paths round differently: measured 1.1e-5
+  const ImageF f = flip_error_map(mask_scene(40, 30, 4, 1.5f), grey);
+  EXPECT_EQ(f.width, 40);
+  EXPECT_EQ(f.height, 30);
+}
+
+// The default observer: a 3840-pixel-wide monitor 0.7 m wide seen from 0.7 m, FLIP's default
+// (Andersson et al. 2020: 67 pixels per degree): 3840 · π / 180 = 67.0206.
+TEST(Flip, DefaultObserverSees67PixelsPerDegree) { EXPECT_NEAR(kFlipPixelsPerDegree, 67.0206, 1e-4); }
+
 TEST(Flip, MeanIsThePlainMeanOfTheMap) {
   ImageF m(3, 2, 1);
   for (int i = 0; i < 6; ++i) m.data[size_t(i)] = float(i);  // 0..5: rows differ, columns differ

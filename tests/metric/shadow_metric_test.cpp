@@ -194,6 +194,23 @@ TEST(ShadowMetric, TableListsEverySubmetric) {
         "aesthetics", "total", "ssim", "rmse", "psnr"})
     EXPECT_NE(table.find(name), std::string::npos) << name;
   EXPECT_NE(table.find("n/a"), std::string::npos);  // no timings
+  // Each value to six decimals on its own line, −0 written as 0.
+  MetricReport r;
+  r.c10 = 0.1234567;
+  r.c50 = -0.0;
+  r.acne = 0.9999994;
+  r.has_performance = true;
+  r.performance = 0.5;
+  const std::string t = metric_report_table(r);
+  auto line_of = [&](const std::string& name) {
+    const size_t at = t.find(name + " ");
+    return at == std::string::npos ? std::string() : t.substr(at, t.find('\n', at) - at);
+  };
+  EXPECT_NE(line_of("c10").find("0.123457"), std::string::npos) << t;
+  EXPECT_NE(line_of("c50").find("0.000000"), std::string::npos) << t;
+  EXPECT_EQ(line_of("c50").find("-0"), std::string::npos) << t;
+  EXPECT_NE(line_of("acne").find("0.999999"), std::string::npos) << t;
+  EXPECT_NE(line_of("performance").find("0.500000"), std::string::npos) << t;
 }
 
 TEST(ShadowMetric, BadInputThrowsInputError) {

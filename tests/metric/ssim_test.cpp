@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -15,6 +16,56 @@ namespace {
 double constant_pair_ssim(double a, double b) {
   const double c1 = 0.01 * 0.01;
   return (2 * a * b + c1) / (a * a + b * b + c1);
+}
+
+// Wang et al.'s definition written out in long double: an 11 × 11 window of weights
+// exp(−(dx² + dy²) / (2·1.5²)) normalized to sum 1, the weighted means, variances and covariance
+// of every valid window (wholly inside; clamp-to-edge reads along a dimension shorter than 11),
+// SSIM per window from C1 = 0.01², C2 = 0.03², and their plain mean.
+long double ssim_brute_force(const ImageF& a, const ImageF& b) {
+  using LD = long double;
+  LD w[11][11], sum = 0;
+  for (int j = 0; j < 11; ++j)
+    for (int i = 0; i < 11; ++i) sum += w[j][i] = std::exp(-LD((i - 5) * (i - 5) + (j - 5) * (j - 5)) / (2 * 1.5L * 1.5L));
+  auto range = [](int n) { return n >= 11 ? std::pair{5, n - 5} : std::pair{0, n}; };
+  const auto [x0, x1] = range(a.width);
+  const auto [y0, y1] = range(a.height);
+  LD total = 0;
+  int windows = 0;
+  for (int cy = y0; cy < y1; ++cy)
+    for (int cx = x0; cx < x1; ++cx) {
+      LD ma = 0, mb = 0, saa = 0, sbb = 0, sab = 0;
+      for (int j = 0; j < 11; ++j)
+        for (int i = 0; i < 11; ++i) {
+          const int x = std::clamp(cx + i - 5, 0, a.width - 1), y = std::clamp(cy + j - 5, 0, a.height - 1);
+          const LD k = w[j][i] / sum, p = a.at(x, y), q = b.at(x, y);
+          ma += k * p;
+          mb += k * q;
+          saa += k * p * p;
+          sbb += k * q * q;
+          sab += k * p * q;
+        }
+      const LD va = saa - ma * ma, vb = sbb - mb * mb, cov = sab - ma * mb;
+      const LD c1 = 1e-4L, c2 = 9e-4L;
+      total += (2 * ma * mb + c1) * (2 * cov + c2) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+      ++windows;
+    }
+  return total / windows;
+}
+
+TEST(Ssim, MatchesTheDefinitionBruteForce) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const auto& [w, h] : {std::pair{23, 17}, std::pair{14, 8}, std::pair{6, 12}}) {
+    ImageF a(w, h, 1), b(w, h, 1);
+    for (size_t i = 0; i < a.data.size(); ++i) {
+      a.data[i] = u(rng);
+      b.data[i] = std::clamp(a.data[i] + 0.4f * (u(rng) - 0.5f), 0.0f, 1.0f);
+    }
+    const long double want = ssim_brute_force(a, b);
+    EXPECT_NEAR(ssim(a, b), double(want), 1e-12) << w << "x" << h;
+    EXPECT_LT(want, 0.95L);
+  }
 }
 
 TEST(Ssim, IdenticalImagesScoreOne) {
