@@ -28,6 +28,30 @@ TEST(MeshBuilders, GridQuadFacesCrossOfEdges) {
   expect_normals_on_front(m);
 }
 
+// A quad a, b, c, d: two triangles that cover it (their areas sum to the quad's, 2 × 3 m²),
+// both facing the side it is counter-clockwise from (+y), with its material and uvs.
+TEST(MeshBuilders, QuadMeshCoversItsQuadFacingItsFront) {
+  Scene s;
+  s.materials.resize(2);
+  const int index = add_quad_mesh(s, vec3(0, 0, 0), vec3(0, 0, 3), vec3(2, 0, 3), vec3(2, 0, 0), 1,
+                                  {vec2(0, 0), vec2(0, 1), vec2(1, 1), vec2(1, 0)});
+  ASSERT_EQ(index, 0);
+  const Mesh& m = s.meshes[0];
+  EXPECT_EQ(m.name, "quad0");
+  EXPECT_EQ(m.material, 1);
+  ASSERT_EQ(m.triangle_count(), 2u);
+  ASSERT_EQ(m.uvs.size(), 4u);
+  double area = 0.0;
+  for (size_t t = 0; t < 2; ++t) {
+    const vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+               c = m.positions[m.indices[3 * t + 2]];
+    area += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+  }
+  EXPECT_NEAR(area, 6.0, 1e-6);
+  for (const vec3& n : m.normals) EXPECT_EQ(n, vec3(0, 1, 0));
+  expect_normals_on_front(m);
+}
+
 TEST(MeshBuilders, BoxIsClosedOutwardWithFlatNormals) {
   Mesh m;
   add_box(m, glm::scale(glm::translate(mat4(1.0f), vec3(1, 2, 3)), vec3(2, 3, 4)));
