@@ -55,6 +55,17 @@ TEST(LodMasking, FullMeshIsItsOwnReferenceAndCoarserLevelsDiffer) {
   EXPECT_GT(sheet.height, 3 * 120);
 }
 
+// The default configuration is the experiment docs/programs/projector_masking.md describes:
+// the full mesh and three levels, the paper's four slides, psm:res=2048,pcf=3, ambient 0.1.
+TEST(LodMasking, DefaultsAreTheDocumentedExperiment) {
+  const MaskingConfig c;
+  EXPECT_EQ(c.levels, (std::vector<size_t>{0, 5000, 1000, 300}));
+  EXPECT_EQ(c.slides, (std::vector<std::string>{"grid:amp=1,freq=0", "grid:amp=1,freq=4", "grid:amp=1,freq=15",
+                                                "grid:amp=0.5,freq=15"}));
+  EXPECT_EQ(c.technique, "psm:res=2048,pcf=3");
+  EXPECT_EQ(c.ambient, 0.1f);
+}
+
 TEST(LodMasking, SlideLabelsAreAmplitudeAndFrequency) {
   EXPECT_EQ(masking_slide_label("grid:amp=1,freq=15"), "A1 F15");
   EXPECT_EQ(masking_slide_label("grid:amp=0.25,freq=0"), "A0.25 F0");

@@ -37,6 +37,25 @@ TEST(Tune, EveryObjectiveReadsItsOwnField) {
   EXPECT_THROW(objective_value(m, "speed"), InputError);
 }
 
+// A tune.json records the config; merge reads it back with the same ranges as tune's flags
+// (--max-evals up to 1e8, --spp up to 2^20, --repeats up to 100000): a config at each flag's
+// upper end is read back as written, and one past it is refused.
+TEST(Tune, ConfigsAtTheFlagsUpperEndsReadBack) {
+  TuneConfig c;
+  c.max_evals = 100000000;
+  c.spp = 1 << 20;
+  c.repeats = 100000;
+  const TuneConfig back = tune_config_from_json(tune_config_json(c), "tune.json");
+  EXPECT_EQ(back.max_evals, c.max_evals);
+  EXPECT_EQ(back.spp, c.spp);
+  EXPECT_EQ(back.repeats, c.repeats);
+  for (const char* key : {"max_evals", "spp", "repeats"}) {
+    nlohmann::json j = tune_config_json(c);
+    j[key] = j[key].get<uint64_t>() + 1;
+    EXPECT_THROW(tune_config_from_json(j, "tune.json"), InputError) << key;
+  }
+}
+
 TEST(Tune, BudgetWinnerIsTheBestThatFitsThenTheCheapest) {
   const std::vector<TuneSummary> s = {
       summary(0, "csm", 0.80, 1.0, 100), summary(1, "csm", 0.90, 3.0, 400),

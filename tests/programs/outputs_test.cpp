@@ -6,6 +6,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -140,6 +141,10 @@ TEST(Outputs, ARerunReplacesThePreviousSetAsAWholeAndKeepsForeignFiles) {
   const std::string d = scratch("rerun") + "/S";
   ASSERT_EQ(run(kTinySweep + " --resolutions 32,64 --repeats 1 --out " + d).exit_code, 0);
   ASSERT_TRUE(fs::exists(d + "/csm_64_mask.png"));
+  // The folder has the permissions any new folder gets: all of rwxrwxrwx the umask allows.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(unsigned(fs::status(d).permissions() & fs::perms::all), unsigned(0777 & ~mask));
   std::ofstream(d + "/notes.txt") << "mine";
   const ProcResult r = run(kTinySweep + " --resolutions 32 --repeats 1 --out " + d);
   ASSERT_EQ(r.exit_code, 0) << r.err;
