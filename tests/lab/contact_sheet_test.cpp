@@ -79,6 +79,28 @@ TEST(ContactSheet, SizeFollowsTheLayoutFormula) {
   EXPECT_EQ(no_ref.height, sheet.height);
 }
 
+// The frame between the row labels and the grid is the separator's width but never more than
+// the padding: with separators of 9 and padding 4, left = 4 + 106 + 12 + 4 = 126. The
+// separators are drawn in the default dark grey, visible next to a lit (1) and a shadowed (0)
+// cell alike.
+TEST(ContactSheet, WideSeparatorsKeepTheFrameAtThePaddingAndShowBetweenCells) {
+  ContactSheetStyle style = small_style();
+  style.max_cell_width = 64;
+  style.padding = 4;
+  style.separator = 9;
+  const std::vector<std::string> rows = {"CSM", "TSM:PCF=3"}, cols = {"1", "2"};
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 40, 30, false, style);
+  EXPECT_EQ(l.left, 4 + 106 + 12 + 4);
+  const ImageF lit(40, 30, 1, 1.0f), dark(40, 30, 1, 0.0f);
+  const std::vector<std::vector<const ImageF*>> cells = {{&lit, &dark}, {&dark, &lit}};
+  const ImageF sheet = contact_sheet(rows, cols, cells, nullptr, ContactSheetStyle{});
+  const ContactSheetLayout d = contact_sheet_layout(rows, cols, 40, 30, false, ContactSheetStyle{});
+  const float gap = sheet.at(d.cell_x(1) - 1, d.cell_y(0) + 5);
+  EXPECT_EQ(gap, ContactSheetStyle{}.separator_value);
+  EXPECT_GT(gap, 0.1f);
+  EXPECT_LT(gap, 0.9f);
+}
+
 TEST(ContactSheet, FontShrinksWhenColumnLabelsWouldOverlap) {
   // Cells of ceil(102/4) = 26 px: "1024" at scale 2 is 46 px > 26 + 2, at scale 1 it is 23 px.
   const ContactSheetLayout l = contact_sheet_layout({"TSM:PCF=3"}, {"1024"}, 102, 61, false, small_style());
