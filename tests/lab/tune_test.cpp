@@ -71,6 +71,35 @@ TEST(Tune, BudgetWinnerIsTheBestThatFitsThenTheCheapest) {
   EXPECT_EQ(best_under(s, 350.0, true, "csm")->point, 4u);
 }
 
+// The plot marks the budgets' winners and nothing else: three points on one scene at 1, 2 and
+// 4 ms with objectives 0.6, 0.8, 0.9; budgets of 2.5 and 10 ms choose the second and third.
+TEST(Tune, PlotMarksExactlyTheBudgetWinners) {
+  TuneResult r;
+  r.scenes = {"default"};
+  const double ms[] = {1.0, 2.0, 4.0}, objective[] = {0.6, 0.8, 0.9};
+  for (size_t k = 0; k < 3; ++k) {
+    TuneEval e;
+    e.index = k;
+    e.point = k;
+    e.technique = "csm";
+    e.spec = "csm:res=" + std::to_string(256 << k);
+    e.lookup_ms = ms[k];
+    e.objective = objective[k];
+    r.points.push_back(e.spec);
+    r.evals.push_back(e);
+  }
+  r.rung_total[1] = 3;
+  TuneConfig c;
+  c.budgets_ms = {2.5, 10.0};
+  const std::vector<PlotPoint> p = tune_plot_points(r, c);
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_FALSE(p[0].chosen);
+  EXPECT_TRUE(p[1].chosen);
+  EXPECT_TRUE(p[2].chosen);
+  c.budgets_ms = {0.5};
+  for (const PlotPoint& q : tune_plot_points(r, c)) EXPECT_FALSE(q.chosen) << q.label;
+}
+
 TEST(Tune, HalvingKeepsNonDominatedLayersUntilAThird) {
   // Nine points. Layer 1 (no point has fewer bytes and a higher objective): 0, 3, 6.
   // Layer 2 after removing them: 1, 4, 7. eta = 3 needs 3 points: layer 1 only.
