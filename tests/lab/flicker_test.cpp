@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/slide.h"
 #include "util/bitmap_font.h"
 #include "lab/contact_sheet.h"
 #include "lab/flicker_run.h"
@@ -127,6 +128,32 @@ TEST(Flicker, SumsAreTheBruteForceMeansOfFrameDifferences) {
   EXPECT_NEAR(row.flip_share, double(flips / n), 1e-12);
   EXPECT_EQ(row.worst_frame, worst_t);
   EXPECT_NEAR(row.worst_excess, double(worst), 1e-12);
+}
+
+// The line runs along world x when the light–target direction is vertical (the plane scene:
+// light straight above the target), f·step per frame; a projector moves with its light.
+TEST(Flicker, LineAlongXForAVerticalLightAndTheProjectorFollows) {
+  Scene s = make_builtin_scene("plane");
+  FlickerConfig c;
+  c.frames = 8;
+  c.path = FlickerPath::LightLine;
+  const vec3 d = flicker_frame_scene(s, c, 0.01, 5).light.position - s.light.position;
+  EXPECT_NEAR(d.x, 0.05, 1e-6);
+  EXPECT_NEAR(d.y, 0.0, 1e-7);
+  EXPECT_NEAR(d.z, 0.0, 1e-7);
+  Projector p;
+  p.position = vec3(0.5f, 3.0f, 0.2f);
+  p.direction = vec3(0.0f, -1.0f, 0.1f);
+  p.slide = make_slide("spot", "test");
+  set_projector(s, p, "test");
+  for (const FlickerPath path : {FlickerPath::LightLine, FlickerPath::LightJitter}) {
+    c.path = path;
+    const Scene f = flicker_frame_scene(s, c, 0.01, 3);
+    ASSERT_TRUE(f.projector.enabled);
+    const vec3 moved = f.light.position - s.light.position;
+    EXPECT_GT(glm::length(moved), 0.001f);
+    EXPECT_EQ(f.projector.position, s.projector.position + moved);
+  }
 }
 
 TEST(Flicker, PathsMoveAsDocumented) {

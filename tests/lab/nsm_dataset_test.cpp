@@ -75,6 +75,62 @@ TEST(NsmDataset, TrajectoriesStayWithinTheirStatedRanges) {
   EXPECT_GT(max_scale, 1.14);
 }
 
+// The light turns about the vertical through the camera's target by up to ±30° at 0.9–1.1× its
+// distance, unless the turned light would not fit the scene (then it keeps the scene's place).
+// 300 draws reach past 29° on the frames that turn (P(miss) < (29/30)^200 = 1e-3).
+TEST(NsmDataset, TheLightTurnsWithinItsStatedRange) {
+  NsmDatasetParams p;
+  const Scene base = make_builtin_scene("default");
+  const vec3 t = base.camera.target, l0 = base.light.position - t;
+  const long double a0 = std::atan2((long double)l0.x, (long double)l0.z);
+  const double r0 = std::hypot(double(l0.x), double(l0.z));
+  double max_deg = 0.0;
+  int turned = 0;
+  for (int frame = 0; frame < 300; ++frame) {
+    const vec3 l = nsm_frame_scene(base, p, frame).light.position - t;
+    if (l == l0) continue;  // kept: the turned light did not fit
+    ++turned;
+    long double a = std::atan2((long double)l.x, (long double)l.z) - a0;
+    while (a > 3.14159265358979323846L) a -= 2 * 3.14159265358979323846L;
+    while (a < -3.14159265358979323846L) a += 2 * 3.14159265358979323846L;
+    const double deg = double(std::fabs(a) * 180.0L / 3.14159265358979323846L);
+    EXPECT_LE(deg, 30.0 + 1e-3) << frame;
+    max_deg = std::max(max_deg, deg);
+    const double reach = std::hypot(double(l.x), double(l.z)) / r0;
+    EXPECT_GE(reach, 0.9 - 1e-5) << frame;
+    EXPECT_LE(reach, 1.1 + 1e-5) << frame;
+  }
+  EXPECT_GT(turned, 200);
+  EXPECT_GT(max_deg, 29.0);
+}
+
+// docs/programs/nsm_data.md: a frame file is its header, zero padding to a multiple of 64, the
+// planes each starting at a multiple of 64, then the 8-byte hash: the length before the hash
+// is a multiple of 64, whatever the crop's size.
+TEST(NsmDataset, FrameFilesKeepTheir64ByteLayout) {
+  NsmDatasetParams p;
+  p.frames = 1;
+  p.width = 24;
+  p.height = 20;
+  p.crop_w = 13;  // planes of 13 × 7 floats: 364 bytes, not a multiple of 64
+  p.crop_h = 7;
+  p.spp = 1;
+  p.base_res = 32;
+  p.radii = {0.0};
+  check_nsm_dataset_params(p);
+  const std::string bytes = nsm_frame_file(p, make_builtin_scene("default"), 0);
+  ASSERT_GT(bytes.size(), 8u);
+  EXPECT_EQ((bytes.size() - 8) % 64, 0u) << bytes.size();
+  // "NSMF", version, header length H, H bytes of JSON, then zeros up to the first plane.
+  ASSERT_EQ(bytes.substr(0, 4), "NSMF");
+  const uint32_t h = uint32_t(uint8_t(bytes[8])) | uint32_t(uint8_t(bytes[9])) << 8 |
+                     uint32_t(uint8_t(bytes[10])) << 16 | uint32_t(uint8_t(bytes[11])) << 24;
+  const size_t end = 12 + size_t(h), first_plane = (end + 63) / 64 * 64;
+  ASSERT_EQ(bytes[12], '{');
+  ASSERT_EQ(bytes[end - 1], '}');
+  for (size_t i = end; i < first_plane; ++i) ASSERT_EQ(bytes[i], '\0') << i;
+}
+
 TEST(NsmDataset, CropsLieInsideTheFrame) {
   NsmDatasetParams p;
   p.width = 100;

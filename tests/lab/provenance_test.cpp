@@ -4,12 +4,33 @@
 #include <string>
 #include <vector>
 
+#include <fstream>
+
+#include "core/error.h"
 #include "lab/provenance.h"
+#include "test_paths.h"
 
 namespace shadowlab {
 namespace provenance_test {
 
 using Args = std::vector<std::string>;
+
+// --from FILE takes --out DIR and --threads N beside it, each with its value: anything else, or
+// one of them last without a value, is refused naming it.
+TEST(Provenance, FromTakesOnlyOutAndThreadsWithTheirValues) {
+  const std::string path = test::binary_path("provenance_from.json");
+  std::ofstream(path) << R"({"provenance": {"program": "render", "command": ["--technique", "csm"]}})";
+  EXPECT_EQ(arguments_from_run("render", path, {"--out", "o", "--threads", "2"}),
+            (Args{"--technique", "csm", "--out", "o", "--threads", "2"}));
+  for (const Args& bad : {Args{"--out"}, Args{"--threads", "2", "--out"}, Args{"--scene", "x"}}) {
+    try {
+      arguments_from_run("render", path, bad);
+      ADD_FAILURE() << bad.back();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("only --out DIR and --threads N"), std::string::npos) << e.what();
+    }
+  }
+}
 
 TEST(Provenance, CommandWithoutDropsTheFlagsAndTheirValuesInBothSpellings) {
   const Args args{"sweep", "--out", "dir", "--scene", "default", "--shard=2/4", "--threads", "2"};
