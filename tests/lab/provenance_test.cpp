@@ -32,6 +32,15 @@ TEST(Provenance, FromTakesOnlyOutAndThreadsWithTheirValues) {
   }
 }
 
+// Recorded scene hashes are read where they are well formed; an entry that is no object or
+// lacks its name is skipped, never an exception from the JSON library.
+TEST(Provenance, FromSkipsMalformedSceneEntries) {
+  const std::string path = test::binary_path("provenance_scenes.json");
+  std::ofstream(path) << R"({"provenance": {"program": "render", "command": ["--technique", "csm"],
+                             "scenes": [5, {"hash": "ab"}, {"name": 7, "hash": "cd"}, {"name": "x", "hash": "ef"}]}})";
+  EXPECT_NO_THROW(arguments_from_run("render", path, {}));
+}
+
 TEST(Provenance, CommandWithoutDropsTheFlagsAndTheirValuesInBothSpellings) {
   const Args args{"sweep", "--out", "dir", "--scene", "default", "--shard=2/4", "--threads", "2"};
   EXPECT_EQ(command_without(args, {"--out", "--shard", "--threads"}), (Args{"sweep", "--scene", "default"}));

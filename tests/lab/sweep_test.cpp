@@ -89,6 +89,32 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
 
 // The number under each cell says what it is: the sheet is exactly the one whose captions read
 // "total 0.834" (the row's total, named, 3 decimals).
+// The suite table: one column per scene headed by its name cut to 11 characters (the column's
+// width), one line per technique row with each scene's score, their mean and the worst.
+TEST(Sweep, SuiteTableHasAColumnPerSceneAndTheMeanAndWorst) {
+  std::vector<SweepResult> results(2);
+  results[0].scene = "depth_range_far";
+  results[1].scene = "plane";
+  const double fid[2][2] = {{0.5, 0.75}, {0.25, 1.0}};
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 2; ++i) {
+      SweepRow row;
+      row.label = i == 0 ? "CSM 64" : "CSM 128";
+      row.report.fidelity = fid[k][i];
+      row.report.total = fid[k][i];
+      results[size_t(k)].rows.push_back(row);
+    }
+  const std::string t = suite_table(results);
+  const std::string header = t.substr(0, t.find('\n'));
+  EXPECT_NE(header.find(" depth_range       plane"), std::string::npos) << header;  // 11 wide, right-aligned
+  EXPECT_EQ(header.find("depth_range_"), std::string::npos) << header;
+  // CSM 64: 0.500 and 0.250, mean 0.375, worst 0.250 on plane.
+  // Labels padded to 18, scores 11 wide after a space, mean and worst 8 wide.
+  EXPECT_NE(t.find("CSM 64                   0.500       0.250    0.375    0.250  plane\n"), std::string::npos) << t;
+  EXPECT_NE(t.find("CSM 128                  0.750       1.000    0.875    0.750  depth_range_far\n"),
+            std::string::npos) << t;
+}
+
 TEST(Sweep, ContactSheetCaptionsNameTheScore) {
   SweepConfig c;
   c.techniques = {"csm:pcf=3"};

@@ -46,5 +46,22 @@ TEST(ViewCheck, FrustumAgainstTheBounds) {
   EXPECT_TRUE(bounds_outside_view(looking(vec3(0, 0, 5), vec3(0)), empty));
 }
 
+// A point lying on a side plane is in view (the slack keeps it), on each of the four planes;
+// one 1e-3 of its distance beyond the plane is outside. Camera at the origin looking down −z,
+// fov 60° over 48 rows of 64: tan of the half angles 0.57735 (vertical) and 0.76980.
+TEST(ViewCheck, PointsOnEachSidePlaneAreSeen) {
+  const Camera c = looking(vec3(0), vec3(0, 0, -1));
+  const double ty = std::tan(M_PI / 6.0), tx = ty * 64.0 / 48.0, z = 5.0;
+  const vec3 on[4] = {vec3(float(z * tx), 0, float(-z)), vec3(float(-z * tx), 0, float(-z)),
+                      vec3(0, float(z * ty), float(-z)), vec3(0, float(-z * ty), float(-z))};
+  for (int k = 0; k < 4; ++k) {
+    Bounds p;
+    p.lo = p.hi = on[k];
+    EXPECT_FALSE(bounds_outside_view(c, p)) << "plane " << k;
+    p.lo = p.hi = on[k] * vec3(1.001f, 1.001f, 1.0f);
+    EXPECT_TRUE(bounds_outside_view(c, p)) << "plane " << k;
+  }
+}
+
 }  // namespace
 }  // namespace shadowlab

@@ -127,9 +127,10 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
 TEST(TuneMains, HalvingRunsTwoRungsAndReportsThem) {
   const std::string dir = test::binary_path("tune_halving");
   std::filesystem::remove_all(dir);
-  // 9 csm points; eta 3 keeps at least 3 for the full size.
+  // 9 csm points; eta 3 keeps at least 3 for the full size. Rung 0 is 1/4 per axis, at least 16
+  // pixels: 96 × 56 gives 24 × 16 (not 14).
   const ProcResult r = run(
-      "tune --space 'csm:res=32..128/x2,pcf=1|3|5' --strategy halving --width 96 --height 72 --spp 8 "
+      "tune --space 'csm:res=32..128/x2,pcf=1|3|5' --strategy halving --width 96 --height 56 --spp 8 "
       "--repeats 1 --threads 2 --budget-ms 16 --no-cache --out " + dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("successive halving: rung 0 ran 9 evaluations at 1/4"), std::string::npos) << r.out;
@@ -138,6 +139,7 @@ TEST(TuneMains, HalvingRunsTwoRungsAndReportsThem) {
   for (const nlohmann::json& e : j["evaluations"]) {
     (e["rung"] == 0 ? rung0 : rung1)++;
     EXPECT_EQ(e["width"].get<int>(), e["rung"] == 0 ? 24 : 96);
+    EXPECT_EQ(e["height"].get<int>(), e["rung"] == 0 ? 16 : 56);
   }
   EXPECT_EQ(rung0, 9u);
   EXPECT_GE(rung1, 3u);
