@@ -46,5 +46,26 @@ TEST(TechniqueSpec, RejectsBadInput) {
   expect_input_error("csm:bias=nan", "number");
 }
 
+// A map must span at least 32 texels of the scene (core/light_fit.h): 2·asin(r/d)/(π/2)·res.
+// Bounds of half-diagonal r = 1 seen from d = 2 span 2/3 of a face: res 48 gives exactly 32
+// texels, which is enough, and res 47 is refused.
+TEST(TechniqueSpec, MapsMustSpanAtLeast32TexelsOfTheScene) {
+  Scene s;
+  s.materials.resize(1);
+  Mesh m;
+  m.positions = {vec3(-1, 0, 0), vec3(1, 0, 0), vec3(0, 0, 0)};
+  m.normals = {vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0)};
+  m.indices = {0, 1, 2};
+  s.meshes.push_back(m);
+  s.light.position = vec3(0, 2, 0);
+  EXPECT_NO_THROW(validate_technique_for_scene(parse_technique_spec("csm:res=48", "--technique"), s, "--technique"));
+  try {
+    validate_technique_for_scene(parse_technique_spec("csm:res=47", "--technique"), s, "--technique");
+    ADD_FAILURE() << "res 47 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 32 needed"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace shadowlab

@@ -123,6 +123,14 @@ TEST(NsmFeatures, DerivedFromTheFp32Planes) {
   }
 }
 
+// Asking for a plane the features do not hold is a check failure (a programming error), named
+// as such, not a read past the list of names.
+TEST(NsmFeaturesDeathTest, AnUnknownPlaneIsACheckFailure) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const Fixture x;
+  EXPECT_DEATH(x.f.plane("no_such_plane"), "CHECK\\(false\\)");
+}
+
 TEST(NsmFeatures, UncoveredPixelsAreZero) {
   const Fixture x;
   size_t uncovered = 0;
