@@ -211,6 +211,32 @@ TEST(FacesNeeded, TapsOfABoxGrownByTheTapReachMissItsFaces) {
 
 // A point box well inside a face is decided; a box around the light or across a face boundary
 // is not.
+// The reaches a block's box is grown by, from their derivations: PCF taps lie within
+// (pcf − 1)/2 + 1.5 texels of the lookup point on each face axis, so the box grows by
+// √2·((pcf − 1)/2 + 2) plane texels (half a texel to spare) times the far corner's distance from
+// the light, and 1 % for rounding; the normal offset moves a point by at most normal × plane
+// texel × its distance, plus 1 %; neither grows a box without the feature.
+TEST(FacesNeeded, ReachesFollowTheirDerivations) {
+  const FaceLayout cube = cube_layout(32, 0);
+  const double texel = 2.0 / 32.0;  // the cube face's plane [−1, 1] over 32 texels
+  BlockBounds box;
+  box.lo = vec3(1.0f, 2.0f, -3.0f);
+  box.hi = vec3(1.5f, 2.5f, -2.0f);
+  const vec3 light(0.5f, 0.0f, 0.0f);
+  const double far = std::sqrt(1.0 * 1.0 + 2.5 * 2.5 + 3.0 * 3.0);  // |(1.5, 2.5, −3) − L|
+  EXPECT_EQ(pcf_tap_reach(cube, 1, box, light, 0.0f), 0.0f);
+  for (const int pcf : {3, 5, 7})
+    EXPECT_NEAR(pcf_tap_reach(cube, pcf, box, light, 0.0f), 1.01 * std::sqrt(2.0) * ((pcf - 1) / 2 + 2) * texel * far,
+                1e-5) << pcf;
+  MapParams p;
+  p.normal = 0.0f;
+  EXPECT_EQ(normal_offset_reach(p, float(texel), box, light), 0.0f);
+  for (const float normal : {0.5f, 1.0f, 2.0f}) {
+    p.normal = normal;
+    EXPECT_NEAR(normal_offset_reach(p, float(texel), box, light), 1.01 * normal * texel * far, 1e-5) << normal;
+  }
+}
+
 TEST(FacesNeeded, BoxTestDecidesInteriorsOnly) {
   const FaceLayout cube = cube_layout(64, 0);
   const vec3 L(0.5f, 1.0f, -0.25f);
