@@ -207,10 +207,9 @@ std::vector<StabilityRow> run_stability_cases() {
       s.light.near = rg.near;
       s.light.far = rg.far;
       const Prepared p = prepare(s);
-      const Range named{p.scene.light.near, p.scene.light.far, rg.tight};
-      const std::string range_name =
-          named.tight ? fmt::format("near={:g} tight far={:.2f}", named.near, named.far)
-                      : fmt::format("near={:g} far={:g}", named.near, named.far);
+      const float near = p.scene.light.near, far = p.scene.light.far;
+      const std::string range_name = rg.tight ? fmt::format("near={:g} tight far={:.2f}", near, far)
+                                              : fmt::format("near={:g} far={:g}", near, far);
       for (const char* t : {"cvsm", "tvsm"}) {
         rows.push_back(measure(p, "vsm_range", range_name, std::string(t) + ":res=512", Check::LitLoss,
                                0.01, 0.1));

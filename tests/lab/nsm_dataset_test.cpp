@@ -107,19 +107,27 @@ TEST(NsmDataset, TheLightTurnsWithinItsStatedRange) {
   EXPECT_LT(min_deg, -29.0);
 }
 
+// A data set of small frames, a crop of crop_w × crop_h, one ray per pixel at one radius (the
+// files' layout and the writer's messages, not the data's quality).
+NsmDatasetParams tiny_params(int frames, int width, int height, int crop_w, int crop_h) {
+  NsmDatasetParams p;
+  p.frames = frames;
+  p.width = width;
+  p.height = height;
+  p.crop_w = crop_w;
+  p.crop_h = crop_h;
+  p.spp = 1;
+  p.base_res = 32;
+  p.radii = {0.0};
+  return p;
+}
+
 // docs/programs/nsm_data.md: a frame file is its header, zero padding to a multiple of 64, the
 // planes each starting at a multiple of 64, then the 8-byte hash: the length before the hash
 // is a multiple of 64, whatever the crop's size.
 TEST(NsmDataset, FrameFilesKeepTheir64ByteLayout) {
-  NsmDatasetParams p;
-  p.frames = 1;
-  p.width = 24;
-  p.height = 20;
-  p.crop_w = 13;  // planes of 13 × 7 floats: 364 bytes, not a multiple of 64
-  p.crop_h = 7;
-  p.spp = 1;
-  p.base_res = 32;
-  p.radii = {0.0};
+  // Planes of 13 × 7 floats: 364 bytes, not a multiple of 64.
+  NsmDatasetParams p = tiny_params(1, 24, 20, 13, 7);
   check_nsm_dataset_params(p);
   const std::string bytes = nsm_frame_file(p, make_builtin_scene("default"), 0);
   ASSERT_GT(bytes.size(), 8u);
@@ -175,15 +183,7 @@ TEST(NsmDataset, SplitFractionsAndHeldOutScenes) {
 
 // The progress counter counts the frames written, from 1/N to N/N, and ends its line.
 TEST(NsmDataset, ProgressCountsFromOneToTheFrameCount) {
-  NsmDatasetParams p;
-  p.frames = 2;
-  p.width = 32;
-  p.height = 24;
-  p.crop_w = 16;
-  p.crop_h = 12;
-  p.spp = 1;
-  p.base_res = 32;
-  p.radii = {0.0};
+  NsmDatasetParams p = tiny_params(2, 32, 24, 16, 12);
   p.val = {{}, 0.0};
   p.test = {{}, 0.0};
   check_nsm_dataset_params(p);
