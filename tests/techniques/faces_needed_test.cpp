@@ -256,6 +256,22 @@ TEST(FacesNeeded, BoxTestDecidesInteriorsOnly) {
   EXPECT_EQ(box_single_face(cube, L, -inf, inf, 0.0f, 1), -1);
 }
 
+// The rounding margin is per coordinate: a point is decided only when moving each coordinate of
+// p − light by up to 1e-5 × scale (scale: the largest coordinate of the box plus the light's, plus
+// the reach) keeps it on its face. Light (1, 0, 0), point (3, 2 − δ, 0.1): scale 4, so the margin
+// is 4e-5 a coordinate; p − light = (2, 2 − δ, 0.1) is on the +x face, and x − y = δ. Moving x
+// down and y up by the margin each closes a gap of 8e-5: δ = 6e-5 may cross to +y and stays
+// undecided, δ = 1e-4 cannot and is decided.
+TEST(FacesNeeded, BoxTestMarginIsPerCoordinate) {
+  const FaceLayout cube = cube_layout(64, 0);
+  const vec3 L(1.0f, 0.0f, 0.0f);
+  const vec3 within(3.0f, 2.0f - 6e-5f, 0.1f), beyond(3.0f, 2.0f - 1e-4f, 0.1f);
+  EXPECT_EQ(face_of(cube, within - L), 0);
+  EXPECT_EQ(face_of(cube, within - L + vec3(-4e-5f, 4e-5f, 0.0f)), 2);
+  EXPECT_EQ(box_single_face(cube, L, within, within, 0.0f, 1), -1);
+  EXPECT_EQ(box_single_face(cube, L, beyond, beyond, 0.0f, 1), 0);
+}
+
 // The faces needed with block bounds equal a brute-force walk of every covered, light-facing
 // pixel's lookup point and (cross-face PCF) every tap, for lights moved around the scene, every
 // layout, PCF sizes and normal offsets. Enough of the cases need fewer than every face, so the
