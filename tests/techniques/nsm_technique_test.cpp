@@ -18,6 +18,7 @@
 #include "scenes/scene_registry.h"
 #include "techniques/nsm/nsm_features.h"
 #include "techniques/nsm/nsm_technique.h"
+#include "techniques/pipeline/light_map.h"
 #include "tests/techniques/nsm_weights_writer.h"
 
 namespace shadowlab {
@@ -179,6 +180,24 @@ TEST(NsmTechnique, WorkCountsFollowTheArchitecture) {
             r.work.bytes_written + r.work.bytes_read + r.work.activation_bytes);
   EXPECT_GT(r.network_ms, 0.0);
   EXPECT_DOUBLE_EQ(r.lookup_ms, r.features_ms + r.network_ms);  // one repeat: no medians mixed
+  std::filesystem::remove(path);
+}
+
+// The memory estimate (the registry's bytes, checked against the memory budget before a run):
+// the base map plus the tensors the forward stores at the GBuffer's size, counted by hand for
+// tiny (F = 4, C = {4, 8}, L = 3) at 72 × 40 (levels of 2880, 720 and 180 pixels): the input
+// and output planes 2880·(4 + 1), the pooled outputs 720·4 and 180·8, the skip 720·8, the
+// bottleneck 180·8 and the decoder's output 720·4, 4 B a value.
+TEST(NsmTechnique, MemoryEstimateCountsTheStoredTensors) {
+  const NsmwDraft d = test::nsmw_draft(tiny(), 3);
+  const std::string path = save(d, "estimate.nsmw");
+  const Scene s = scene_with_occluder();
+  const GBuffer g = render_gbuffer(s);
+  const uint64_t values = 2880 * 5 + 720 * 4 + 180 * 8 + 720 * 8 + 180 * 8 + 720 * 4;
+  const uint64_t map = light_map_bytes(nsm_base_map_params(128), s);
+  EXPECT_EQ(nsm_technique_bytes(parse_technique_spec("nsm:weights=" + path + ",res=128", "--technique"),
+                                s, &g, "--technique"),
+            map + 4 * values);
   std::filesystem::remove(path);
 }
 
