@@ -186,6 +186,13 @@ def run(a):
     if a.no_headers:
         files = [f for f in files if f.endswith(".cpp")]
     mutants = sample(all_mutants(a.folder, files), a.sample, a.seed)
+    if a.ids:  # only these of the draw (e.g. the survivors of an earlier draw, judged again)
+        wanted = set(a.ids.split(","))
+        mutants = [m for m in mutants if m.id in wanted]
+        unknown = wanted - {m.id for m in mutants}
+        if unknown:
+            fail("--ids", f"{sorted(unknown)[0]}: no such mutant in the draw (its line changed, or "
+                 "another folder's)")
     if a.list:
         for m in mutants:
             with open(os.path.join(ROOT, m.path), encoding="utf-8") as f:
@@ -297,6 +304,7 @@ def main(argv=None):
     p.add_argument("--gtest-filter", help="run only these tests of the binary")
     p.add_argument("--sample", type=int, help="draw this many mutants (default: all)")
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--ids", help="run only these mutants of the draw, comma-separated ids")
     p.add_argument("--state", help="results file (default BUILD/mutate_state.jsonl)")
     p.add_argument("--timeout-factor", type=float, default=4.0)
     p.add_argument("--no-headers", action="store_true", help="mutate .cpp files only")
