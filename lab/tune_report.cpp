@@ -339,7 +339,7 @@ TuneResult merge_tune_shards(const std::vector<nlohmann::json>& shards,
     if (r.scenes != merged.scenes || r.points != merged.points || r.strategy != merged.strategy ||
         r.rung_total[0] != merged.rung_total[0] || r.rung_total[1] != merged.rung_total[1])
       throw InputError(paths[i], "lists other scenes, points or evaluation counts than " + paths[0]);
-    const int id = int(json_uint(j, "shard", 100000, paths[i]));
+    const int id = int(json_uint(j, "shard", uint64_t(n - 1), paths[i]));  // n >= 1: the count matched
     if (!shard_ids.insert(id).second)
       throw InputError(paths[i], fmt::format("shard {} given twice", id));
     for (TuneEval& e : r.evals) {

@@ -114,6 +114,23 @@ TEST(ContactSheet, FontShrinksWhenColumnLabelsWouldOverlap) {
   EXPECT_EQ(contact_sheet_layout({"A"}, {"64"}, 102, 61, false, small_style()).font_scale, 2);
 }
 
+// A column label wider than the space left of its cell's centre starts at the sheet's left
+// edge instead of being cut: at scale 1, row label "A" gives left = 6 + 5 + 6 + 2 = 19 and
+// cells 10 wide, so "WWWWWWWWWW" (59 px) centred over column 0 would start at 19 − 24 = −5; it
+// is drawn from x = 0, where W's left column (rows 0–5 of the glyph) is ink.
+TEST(ContactSheet, AColumnLabelWiderThanTheLeftSideStartsAtTheEdge) {
+  const std::vector<std::string> rows = {"A"}, cols = {"WWWWWWWWWW", "1", "2", "3", "4"};
+  const ImageF m(10, 10, 1, 1.0f);
+  const std::vector<std::vector<const ImageF*>> cells = {{&m, &m, &m, &m, &m}};
+  const ContactSheetStyle style = small_style();
+  const ContactSheetLayout l = contact_sheet_layout(rows, cols, 10, 10, false, style);
+  ASSERT_EQ(l.font_scale, 1);
+  ASSERT_EQ(l.left, 19);
+  const ImageF sheet = contact_sheet(rows, cols, cells, nullptr, style);
+  for (int r = 0; r < 6; ++r) EXPECT_EQ(sheet.at(0, style.padding + r), style.ink) << r;
+  EXPECT_EQ(sheet.at(58, style.padding), style.ink);  // the last W's right column
+}
+
 TEST(ContactSheet, DefaultStyleKeepsCellsAtMost256Wide) {
   for (int w : {96, 256, 257, 320, 1024, 1920}) {
     const ContactSheetLayout l = contact_sheet_layout({"A"}, {"1"}, w, 10, false);

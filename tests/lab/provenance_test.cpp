@@ -15,6 +15,30 @@ namespace provenance_test {
 
 using Args = std::vector<std::string>;
 
+// The program is argv[0]'s last path component and the arguments are the rest, also for a
+// command without arguments; with argc 0 (no argv[0] at all) there are neither.
+TEST(Provenance, RunCommandIsTheProgramsNameAndItsArguments) {
+  std::vector<std::string> saved = run_arguments();
+  saved.insert(saved.begin(), run_program());
+  char prog[] = "/opt/x/render", a1[] = "--technique", a2[] = "csm";
+  char* with_args[] = {prog, a1, a2, nullptr};
+  set_run_command(3, with_args);
+  EXPECT_EQ(run_program(), "render");
+  EXPECT_EQ(run_arguments(), (Args{"--technique", "csm"}));
+  char bare[] = "metric";
+  char* alone[] = {bare, nullptr};
+  set_run_command(1, alone);
+  EXPECT_EQ(run_program(), "metric");
+  EXPECT_TRUE(run_arguments().empty());
+  char* none[] = {nullptr};
+  set_run_command(0, none);
+  EXPECT_EQ(run_program(), "metric");  // unchanged: no name was given
+  EXPECT_TRUE(run_arguments().empty());
+  std::vector<char*> restore;
+  for (std::string& a : saved) restore.push_back(a.data());
+  set_run_command(int(restore.size()), restore.data());
+}
+
 // --from FILE takes --out DIR and --threads N beside it, each with its value: anything else, or
 // one of them last without a value, is refused naming it.
 TEST(Provenance, FromTakesOnlyOutAndThreadsWithTheirValues) {

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "core/error.h"
 #include "scenes/scene_library.h"
 #include "lab/contact_sheet.h"
 #include "lab/sweep.h"
@@ -113,6 +114,48 @@ TEST(Sweep, SuiteTableHasAColumnPerSceneAndTheMeanAndWorst) {
   EXPECT_NE(t.find("CSM 64                   0.500       0.250    0.375    0.250  plane\n"), std::string::npos) << t;
   EXPECT_NE(t.find("CSM 128                  0.750       1.000    0.875    0.750  depth_range_far\n"),
             std::string::npos) << t;
+}
+
+// The label column is as wide as the longest label (at least 18), so every row's scores sit
+// under their headers: "c10" and its value are right-aligned in 6 after the label column and a space.
+TEST(Sweep, TableLabelColumnFitsTheLongestLabel) {
+  SweepResult r;
+  r.reference.label = "RT 16spp";
+  SweepRow row;
+  row.label = "cvsm:res=1024,blur=5,bleed=0.2";  // 30 characters
+  row.report.c10 = 0.125;
+  r.rows.push_back(row);
+  const std::string t = sweep_table(r);
+  std::vector<std::string> lines;
+  for (size_t b = 0, e; (e = t.find('\n', b)) != std::string::npos; b = e + 1) lines.push_back(t.substr(b, e - b));
+  ASSERT_EQ(lines.size(), 3u) << t;
+  // Both end at column 30 + 1 + 6.
+  EXPECT_EQ(lines[0].find("c10") + 3, 37u) << lines[0];
+  EXPECT_EQ(lines[2].find("0.125") + 5, 37u) << lines[2];
+  EXPECT_EQ(lines[1].substr(0, 31), "RT 16spp" + std::string(23, ' ')) << lines[1];
+}
+
+// A result read back needs its provenance's command as a list: missing, or of another type,
+// it is refused naming the file.
+TEST(Sweep, ResultWithoutACommandListIsRefused) {
+  SweepResult r;
+  r.scene = "plane";
+  r.provenance = {{"program", "resolution_sweep"}, {"command", {"--quick"}}};
+  const nlohmann::json good = sweep_json(r);
+  EXPECT_NO_THROW(sweep_from_json(good, "s.json"));
+  for (const nlohmann::json& command : {nlohmann::json("--quick"), nlohmann::json(nullptr)}) {
+    nlohmann::json bad = good;
+    bad["provenance"]["command"] = command;
+    try {
+      sweep_from_json(bad, "s.json");
+      ADD_FAILURE() << command;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "s.json: its provenance has no command") << command;
+    }
+  }
+  nlohmann::json none = good;
+  none["provenance"].erase("command");
+  EXPECT_THROW(sweep_from_json(none, "s.json"), InputError);
 }
 
 TEST(Sweep, ContactSheetCaptionsNameTheScore) {

@@ -89,7 +89,8 @@ TEST(Provenance, FromRepeatsTheScoresExactly) {
     for (const char* k : {"spec", "c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail", "fidelity",
                           "aesthetics", "ssim", "rmse", "psnr"})
       EXPECT_EQ(a["rows"][i][k], b["rows"][i][k]) << i << " " << k;
-  // The repeat records its own command: the recorded one with the new --out.
+  // The repeat records its own program and command: the recorded one with the new --out.
+  EXPECT_EQ(b["provenance"]["program"], "resolution_sweep");
   std::vector<std::string> cmd = a["provenance"]["command"];
   cmd[std::find(cmd.begin(), cmd.end(), "--out") - cmd.begin() + 1] = dir + "/b";
   std::vector<std::string> got = b["provenance"]["command"];

@@ -101,6 +101,14 @@ TEST(TuneMains, ThreeShardsMergeToTheSingleProcessScores) {
   expect_clear_error("merge " + dir + "/shards/tune_shard0of3.json " + dir + "/shards/tune_shard1of3.json " + dir +
                          "/shards/huge.json --out " + dir + "/x",
                      "'index' is missing or not a whole number");
+  // A shard id outside 0..N-1 is refused by name, even for a file with no evaluations to check.
+  nlohmann::json beyond = read_json(dir + "/shards/tune_shard2of3.json");
+  beyond["shard"] = 3;
+  beyond["evaluations"] = nlohmann::json::array();
+  std::ofstream(dir + "/shards/beyond.json") << beyond.dump();
+  expect_clear_error("merge " + dir + "/shards/tune_shard0of3.json " + dir + "/shards/tune_shard1of3.json " + dir +
+                         "/shards/beyond.json --out " + dir + "/x",
+                     "beyond.json: 'shard' = 3 is too large");
   nlohmann::json noconfig = read_json(dir + "/shards/tune_shard0of3.json");
   noconfig.erase("config");
   std::ofstream(dir + "/shards/noconfig.json") << noconfig.dump();
