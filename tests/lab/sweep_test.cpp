@@ -92,6 +92,27 @@ TEST(Sweep, FidelityAndDetailRiseWithResolution) {
 // "total 0.834" (the row's total, named, 3 decimals).
 // The suite table: one column per scene headed by its name cut to 11 characters (the column's
 // width), one line per technique row with each scene's score, their mean and the worst.
+// The progress line counts the steps of the whole sweep: the reference and every technique at
+// every resolution, 1 + 2 × 2 = 5 here, from [0/5] to [5/5].
+TEST(Sweep, ProgressCountsTheReferenceAndEveryRow) {
+  Scene scene = make_builtin_scene("default");
+  scene.camera.width = 48;
+  scene.camera.height = 32;
+  SweepConfig c;
+  c.techniques = {"csm", "cvsm"};
+  c.resolutions = {32, 64};
+  c.spp = 4;
+  c.repeats = 1;
+  c.progress = true;
+  testing::internal::CaptureStderr();
+  const SweepResult r = run_resolution_sweep(scene, c);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(r.rows.size(), 4u);
+  EXPECT_NE(err.find("[0/5] reference"), std::string::npos) << err;
+  EXPECT_NE(err.find("[5/5] "), std::string::npos) << err;
+  EXPECT_EQ(err.find("[6/"), std::string::npos) << err;
+}
+
 TEST(Sweep, SuiteTableHasAColumnPerSceneAndTheMeanAndWorst) {
   std::vector<SweepResult> results(2);
   results[0].scene = "depth_range_far";

@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -305,6 +306,11 @@ TEST(Mains, ProjectorBadInputIsOneLineAndExitCodeTwo) {
   expect_clear_error(base + " --technique csm --slide spot --projector-target 0.9,2.7,-0.4",
                      "--projector-target");  // the default scene's light: target == position
   expect_clear_error(base + " --technique csm --slide /no/such/slide.png", "/no/such/slide.png");
+  // A value outside a numeric flag's range is refused naming the range: the projector's field of
+  // view is [0.1°, 169°], the memory budget up to 1e6 GB.
+  expect_clear_error(base + " --technique csm --slide spot --projector-fov 169.5",
+                     "--projector-fov: 169.5 is outside [0.1, 169]");
+  expect_clear_error(base + " --technique csm --max-memory 2e6", "--max-memory: 2e6 is outside [1e-06, 1000000]");
 }
 
 // Every render writes the shaded image; without a projector, lit floor pixels are brighter
@@ -387,6 +393,11 @@ TEST(Mains, QuickSweepPrintsReferenceRowOfOnes) {
   // The plot: both rows in each of the three panels (time, time, bytes), not the reference.
   const std::string svg = file_bytes(plot);
   ASSERT_FALSE(svg.empty());
+  // A file output outside --out has the permissions any new file gets: rw for all the umask allows.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(unsigned(std::filesystem::status(plot).permissions() & std::filesystem::perms::all),
+            unsigned(0666 & ~mask));
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find(">CSM 32</text>"), std::string::npos);
   EXPECT_NE(svg.find(">CSM 256</text>"), std::string::npos);

@@ -172,12 +172,22 @@ TEST(TuneMains, SweepShardsMergeToTheSingleProcessScores) {
   const nlohmann::json a = read_json(dir + "/single/sweep.json"), b = read_json(dir + "/merged/sweep.json");
   ASSERT_EQ(a["rows"].size(), 6u);
   ASSERT_EQ(b["rows"].size(), 6u);
+  EXPECT_EQ(b["shard"], 0);  // the merged result is one whole run: shard 0 of 1
+  EXPECT_EQ(b["shards"], 1);
   for (size_t i = 0; i < 6; ++i)
     for (const char* k : {"spec", "c10", "c50", "c90", "dark", "lit", "acne", "noise", "detail", "fidelity",
                           "aesthetics", "ssim", "rmse", "psnr", "work"})
       EXPECT_EQ(a["rows"][i][k], b["rows"][i][k]) << i << " " << k;
   EXPECT_TRUE(std::filesystem::exists(dir + "/merged/plot.svg"));
   expect_clear_error("merge " + dir + "/shards/sweep_shard0of3.json --out " + dir + "/x", "is one of 3 shards, 1 files given");
+  // A shard of another run is refused naming both files: the one that differs and the first.
+  nlohmann::json foreign = read_json(dir + "/shards/sweep_shard2of3.json");
+  foreign["provenance"]["scenes"][0]["hash"] = "0000000000000000";
+  std::ofstream(dir + "/shards/foreign.json") << foreign.dump();
+  expect_clear_error("merge " + dir + "/shards/sweep_shard0of3.json " + dir + "/shards/sweep_shard1of3.json " + dir +
+                         "/shards/foreign.json --out " + dir + "/x",
+                     dir + "/shards/foreign.json: provenance 'scenes/0/hash' differs from " + dir +
+                         "/shards/sweep_shard0of3.json's (\"0000000000000000\" vs \"");
   expect_clear_error(cmd + " --suite hard --shard 0/2 --out " + dir + "/x", "--shard: not with --suite");
 }
 

@@ -228,6 +228,8 @@ TEST(FacesNeeded, ReachesFollowTheirDerivations) {
   for (const int pcf : {3, 5, 7})
     EXPECT_NEAR(pcf_tap_reach(cube, pcf, box, light, 0.0f), 1.01 * std::sqrt(2.0) * ((pcf - 1) / 2 + 2) * texel * far,
                 1e-5) << pcf;
+  // A box already grown by the normal offset's reach r: its points are up to far + r away.
+  EXPECT_NEAR(pcf_tap_reach(cube, 3, box, light, 0.25f), 1.01 * std::sqrt(2.0) * 3 * texel * (far + 0.25), 1e-5);
   MapParams p;
   p.normal = 0.0f;
   EXPECT_EQ(normal_offset_reach(p, float(texel), box, light), 0.0f);

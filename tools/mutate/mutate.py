@@ -33,7 +33,7 @@ SOURCE_EXT = (".cpp", ".h", ".inl")
 FOLDER_TESTS = {"core": "test_core,test_core@scalar", "scenes": "test_scenes",
                 "raster": "test_raster,test_raster@scalar,test_raster@avx2,test_raytrace",
                 "raytrace": "test_raytrace", "metric": "test_metric",
-                "techniques": "test_techniques,test_techniques@avx2", "util": "test_util",
+                "techniques": "test_techniques,test_techniques@scalar,test_techniques@avx2", "util": "test_util",
                 "lab": "test_lab,test_programs"}
 EQUIVALENT_FILE = os.path.join(ROOT, "tools", "mutate", "equivalent.txt")
 
@@ -106,6 +106,23 @@ def build(build_dir, targets, log):
 # "BINARY@scalar" and "BINARY@avx2" in --test run the binary with the narrower kernel tables
 # (docs/simd.md), so that code reached only through another table's choice is tested too.
 ISA_ENV = {"scalar": ("SHADOWLAB_SCALAR", "1"), "avx2": ("SHADOWLAB_ISA", "avx2")}
+
+
+def binaries_digest(build_dir, targets):
+    """One hash of the test binaries' bytes: a mutant that leaves them all as they were (code in
+    a preprocessor branch this build does not compile, or that the compiler folds to the same
+    instructions) cannot change any output of this build."""
+    paths = [os.path.join(build_dir, "tests", t) for t in targets]
+    programs = os.path.join(build_dir, "programs")  # what test_programs runs
+    if os.path.isdir(programs):
+        paths += sorted(os.path.join(programs, n) for n in os.listdir(programs)
+                        if os.path.isfile(os.path.join(programs, n)) and os.access(os.path.join(programs, n), os.X_OK))
+    h = hashlib.sha256()
+    for path in paths:
+        h.update(path.encode())
+        with open(path, "rb") as f:
+            h.update(hashlib.sha256(f.read()).digest())
+    return h.hexdigest()
 
 
 def parse_runs(spec):
@@ -222,6 +239,7 @@ def run(a):
     rc, failed, base = run_tests(a.build, runs, [None] * len(runs), a.gtest_filter)
     if rc != 0:
         fail("--folder", f"{target} fails before any mutation: {failed}")
+    base_digest = binaries_digest(a.build, targets)
     timeouts = [max(10.0, a.timeout_factor * b) for b in base]
     print(f"{PROGRAM}: baseline {target} " + ", ".join(f"{b:.1f} s" for b in base) +
           "; limit " + ", ".join(f"{t:.0f} s" for t in timeouts), flush=True)
@@ -239,6 +257,8 @@ def run(a):
                     f.write(m.apply(text))
                 if not build(a.build, targets, None):
                     status, detail = "stillborn", ""
+                elif binaries_digest(a.build, targets) == base_digest:
+                    status, detail = "same binary", "the test binaries are byte-identical to the unmutated ones"
                 else:
                     rc, failed, _ = run_tests(a.build, runs, timeouts, a.gtest_filter)
                     status = "survived" if rc == 0 else "killed"
@@ -278,7 +298,7 @@ def report(state_path, drawn=None):
             f["stillborn"] += 1
         elif r["status"] == "killed":
             f["killed"] += 1
-        elif r["id"] in eq:
+        elif r["id"] in eq or r["status"] == "same binary":
             f["equivalent"] += 1
         else:
             f["survived"].append(r)

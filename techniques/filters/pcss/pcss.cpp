@@ -14,6 +14,7 @@
 #include "techniques/pipeline/map_filter.h"
 #include "techniques/lookup/map_lookup.h"
 #include "techniques/filters/pcss/penumbra_model.h"
+#include "techniques/filters/pcss/pcss_scale.h"
 #include "techniques/lookup/poisson_disk.h"
 
 namespace shadowlab {
@@ -107,9 +108,7 @@ inline float compare_at(const PcssContext& c, const Receiver& r, vec2 st) {
 }
 
 // Per-receiver quantities of the four stages. Angles (radians, seen from the light) become
-// texels by the face's texels per plane unit × ρ, ρ = √(1 + u² + v²) the distance from the light
-// to the receiver's point on the unit image plane (the isotropic, tangential scale of the
-// gnomonic map; radially it stretches by another ρ, ignored).
+// texels by pcss_texels_per_radian (pcss_scale.h).
 struct PcssLane {
   double t;                 // the receiver's depth
   float texels_per_radian;
@@ -121,12 +120,7 @@ struct PcssLane {
 PcssLane pcss_lane(const PcssContext& c, const Receiver& r) {
   const LightFace& f = c.layout.faces[size_t(r.face)];
   PcssLane l;
-  const float per_plane = float(f.width) / (f.right_edge - f.left);  // texels per plane unit
-  const float u = f.left + r.st.x / per_plane;
-  const float v = f.top - r.st.y * (f.top - f.bottom) / float(f.height);
-  // (The paraboloid map is conformal, with 2/(1 + u² + v²) radians per plane unit.)
-  l.texels_per_radian = f.paraboloid ? per_plane * 0.5f * (1.0f + u * u + v * v)
-                                     : per_plane * std::sqrt(1.0f + u * u + v * v);
+  l.texels_per_radian = pcss_texels_per_radian(f, r.st);
   l.t = double(r.depth);
   l.max_radius = 0.5f * float(std::max(f.width, f.height));
   // 1. Blocker search: blockers at s·t or farther can hide part of the light from the receiver
