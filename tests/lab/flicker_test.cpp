@@ -177,6 +177,11 @@ TEST(Flicker, PathsMoveAsDocumented) {
   const double chord = 2 * radius * std::sin(step / (2 * radius));
   EXPECT_NEAR(glm::length(flicker_frame_scene(s, c, step, 3).light.position -
                           flicker_frame_scene(s, c, step, 2).light.position), chord, 1e-6);
+  // It sets out along u × up, u the line path's direction (its centre lies along −u): the first
+  // chord, over 2π/16 of the circle, is π/16 from that tangent.
+  const vec3 first = flicker_frame_scene(s, c, step, 1).light.position - p0;
+  EXPECT_NEAR(glm::dot(glm::normalize(first), glm::normalize(glm::cross(glm::normalize(d), vec3(0.0f, 1.0f, 0.0f)))),
+              std::cos(M_PI / 16), 1e-5);
   // Pan: eye and target by the same f·step along the camera's right vector; the light stays.
   c.path = FlickerPath::CameraPan;
   const Scene pan = flicker_frame_scene(s, c, step, 4);

@@ -14,6 +14,12 @@ namespace shadowlab {
 // A named namespace: the unity build compiles several test files in one translation unit.
 namespace nsm_dataset_test {
 
+// The file hash is the last 8 bytes, little-endian, for any input of at least 8 bytes.
+TEST(NsmDataset, FileHashIsTheLastEightBytes) {
+  EXPECT_EQ(nsm_file_hash(std::string("\x01\x02\x03\x04\x05\x06\x07\x08", 8)), 0x0807060504030201ull);
+  EXPECT_EQ(nsm_file_hash(std::string("xyz\x10\0\0\0\0\0\0\xff", 11)), 0xff00000000000010ull);
+}
+
 TEST(NsmDataset, PerturbationsStayWithinTheirBounds) {
   NsmDatasetParams p;
   const Scene base = make_builtin_scene("default");

@@ -38,6 +38,8 @@ TEST(ParamSpace, ComputedValuesHaveFourSignificantDigits) {
   EXPECT_EQ(parse_domain("1..2/lin4", "f"), (V{"1", "1.333", "1.667", "2"}));
   EXPECT_EQ(parse_domain("123456.5|2", "f"), (V{"123456.5", "2"}));  // given values stay as given
   EXPECT_THROW(parse_domain("123456.5..123457.5/lin2", "f"), InputError);
+  // A one-digit exponent is written with one digit: 12345.5 → "1.235e4", not "1.235e04".
+  EXPECT_EQ(parse_domain("1..24690/lin3", "f"), (V{"1", "1.235e4", "24690"}));
 }
 
 TEST(ParamSpace, PointsAreTheOdometerOfTheDomains) {
@@ -69,7 +71,8 @@ TEST(ParamSpace, MalformedDomainsAreRefusedWithTheReason) {
   EXPECT_NE(reason("csm:res=").find("empty value"), std::string::npos);
   EXPECT_NE(reason("csm:res=1..2/x1").find("factor must be > 1"), std::string::npos);
   EXPECT_NE(reason("csm:bias=0..1/log4").find("A > 0"), std::string::npos);
-  EXPECT_NE(reason("csm:bias=0..1/lin1").find("N >= 2"), std::string::npos);
+  EXPECT_NE(reason("csm:bias=0..1/lin1").find("'lin1': need linN with N >= 2"), std::string::npos);
+  EXPECT_NE(reason("csm:bias=1..2/log0").find("'log0': need logN with N >= 2"), std::string::npos);
   EXPECT_NE(reason("csm:bias=0.5..1").find("whole-number ends"), std::string::npos);
   EXPECT_NE(reason("csm:res=1..1000000").find("more than 4096 values"), std::string::npos);
   EXPECT_NE(reason("csm:res=1,res=2").find("given twice"), std::string::npos);

@@ -200,6 +200,23 @@ TEST(Outputs, ACrashBetweenTheTwoRenamesIsRecoveredByTheNextRun) {
   EXPECT_EQ(std::distance(fs::directory_iterator(parent), fs::directory_iterator()), 1);
 }
 
+// Only names of the exact form --out.staging-PID / --out.old-PID, PID at most 10 digits, are a
+// crashed run's: folders that merely look alike (no digits, other characters, 11 digits: no
+// pid, whatever a cast would make of it) are someone else's and stay.
+TEST(Outputs, LookalikesOfACrashedRunsFoldersAreLeftAlone) {
+  const std::string parent = scratch("lookalike");
+  const std::string d = parent + "/R";
+  const std::vector<std::string> others = {d + ".staging-", d + ".staging-12ab", d + ".staging-99999999999",
+                                           d + ".old-99999999999"};
+  for (const std::string& o : others) {
+    fs::create_directories(o);
+    std::ofstream(o + "/keep.txt") << "mine";
+  }
+  const ProcResult r = run("render --technique csm:res=64 --width 64 --height 48 --repeats 1 --out " + d);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& o : others) EXPECT_EQ(read_bytes(o + "/keep.txt"), "mine") << o;
+}
+
 // Starts build/programs/<program> with args (stdout and stderr to /dev/null).
 pid_t spawn(const std::string& program, const std::vector<std::string>& args) {
   const std::string path = std::string(SHADOWLAB_BINARY_DIR) + "/programs/" + program;
