@@ -37,6 +37,33 @@ Isa resolve_process_isa() {
 // ScopedIsa's override: -1 when none, else the Isa's value.
 std::atomic<int> g_override{-1};
 
+bool isa_named_by_environment() {
+  const char* scalar = std::getenv("SHADOWLAB_SCALAR");
+  const char* named = std::getenv("SHADOWLAB_ISA");
+  return (scalar && std::strcmp(scalar, "1") == 0) ||
+         (named && (std::strcmp(named, "scalar") == 0 || std::strcmp(named, "avx2") == 0 ||
+                    std::strcmp(named, "avx512") == 0));
+}
+
+bool cpu_is_intel() {
+#if defined(SHADOWLAB_EMULATE_SIMD)
+  return false;
+#elif defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  return __builtin_cpu_is("intel");
+#else
+  return false;
+#endif
+}
+
+// The widest table worth running for a family on this CPU's vendor (docs/simd.md).
+Isa family_best(IsaFamily family) {
+  switch (family) {
+    case IsaFamily::msm_batch: return cpu_is_intel() ? Isa::avx2 : Isa::avx512;
+  }
+  return Isa::avx512;
+}
+
 }  // namespace
 
 const char* isa_name(Isa isa) {
@@ -63,6 +90,15 @@ Isa process_isa() {
   if (forced >= 0) return Isa(forced);
   static const Isa isa = resolve_process_isa();
   return isa;
+}
+
+Isa family_isa(IsaFamily family) {
+  const Isa isa = process_isa();
+  if (g_override.load(std::memory_order_relaxed) >= 0) return isa;
+  static const bool named = isa_named_by_environment();
+  if (named) return isa;
+  const Isa best = family_best(family);
+  return best < isa ? best : isa;
 }
 
 ScopedIsa::ScopedIsa(Isa isa) : previous_(g_override.exchange(int(isa))) {}

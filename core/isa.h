@@ -31,6 +31,16 @@ std::vector<Isa> cpu_isas();
 // SHADOWLAB_ISA, read once, at the first call.
 Isa process_isa();
 
+// Kernel families whose fastest table is not the widest one on every CPU kind, by measurement
+// (docs/simd.md, "Per-family choice"): the MSM lookup's 8-lane reconstruction batch, whose AVX2
+// table is 8-10 % faster than its AVX-512 one on Intel Xeon (Sapphire Rapids class).
+enum class IsaFamily { msm_batch };
+
+// The table `family` runs: process_isa(), narrowed to the family's measured best on this CPU's
+// vendor only when neither SHADOWLAB_ISA nor SHADOWLAB_SCALAR is set and no ScopedIsa lives,
+// so that SHADOWLAB_ISA=avx512 still runs (and times) every family's widest table.
+Isa family_isa(IsaFamily family);
+
 // For tests: process_isa() returns `isa` while this lives (the previous choice after), so that
 // one test binary runs the callers of every table. Not for concurrent use with other overrides.
 class ScopedIsa {

@@ -64,6 +64,40 @@ TEST(Isa, TheProcessIsaFollowsTheEnvironment) {
   EXPECT_EQ(process_isa(), expected_process_isa(cpu_isa()));
 }
 
+// The CPU's vendor as /proc/cpuinfo names it ("GenuineIntel", "AuthenticAMD"); empty if none.
+std::string cpuinfo_vendor() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("vendor_id", 0) == 0) {
+      std::istringstream words(line.substr(line.find(':') + 1));
+      std::string v;
+      words >> v;
+      return v;
+    }
+  return "";
+}
+
+// The per-family rule (core/isa.h): the environment's set when it names one; otherwise MSM's
+// batch at most AVX2 on Intel, the process's set elsewhere; a ScopedIsa's set while one lives.
+TEST(Isa, FamiliesRunTheirMeasuredBestUnlessASetIsNamed) {
+  const char* scalar = std::getenv("SHADOWLAB_SCALAR");
+  const char* named = std::getenv("SHADOWLAB_ISA");
+  const bool env = (scalar && std::strcmp(scalar, "1") == 0) ||
+                   (named && (std::strcmp(named, "scalar") == 0 || std::strcmp(named, "avx2") == 0 ||
+                              std::strcmp(named, "avx512") == 0));
+  Isa want = process_isa();
+#if !defined(SHADOWLAB_EMULATE_SIMD)
+  if (!env && cpuinfo_vendor() == "GenuineIntel" && want == Isa::avx512) want = Isa::avx2;
+#endif
+  EXPECT_EQ(family_isa(IsaFamily::msm_batch), want) << cpuinfo_vendor();
+  for (const Isa isa : cpu_isas()) {
+    const ScopedIsa forced(isa);
+    EXPECT_EQ(family_isa(IsaFamily::msm_batch), isa);
+  }
+  std::printf("vendor %s, msm_batch: %s\n", cpuinfo_vendor().c_str(), isa_name(family_isa(IsaFamily::msm_batch)));
+}
+
 TEST(Isa, ScopedIsaOverridesAndRestores) {
   const Isa before = process_isa();
   {

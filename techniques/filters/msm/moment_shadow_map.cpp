@@ -189,7 +189,7 @@ void lookup(const Scene& scene, const GBuffer& g, const MapParams& p, const Ligh
   };
   const LookupKernels& kernels = lookup_kernels(process_isa());
   MsmBatch batch{k, kernels.bilinear8_interleaved4, kernels.bilinear8_mix4, plane_gather(map.a),
-                 kernels.prefetch8, &lookup_batch_kernels(process_isa())};
+                 kernels.prefetch8, &lookup_batch_kernels(family_isa(IsaFamily::msm_batch))};
   const bool gathers = batch.bilinear8x4 != nullptr && batch.mix4 != nullptr &&
                        batch.batches->msm_mixed1 != nullptr && batch.moments.ok;
   if (gathers)
