@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "raster/pipeline.h"
+#include "raster/tile_binner.h"
 
 namespace shadowlab {
 namespace {
@@ -47,6 +48,21 @@ std::vector<int> count_coverage(const Soup& soup, int w, int h, CullMode cull = 
   DepthTarget depth;
   rasterize(soup.views(), view_proj, cull, w, h, depth, shader);
   return counts;
+}
+
+// A mesh's box is outside the frustum when all 8 corners are beyond one clip plane: with the
+// identity as view-projection (clip = world, w = 1), a unit box moved past each of x = ±1,
+// y = ±1 and z = −1 (the near plane) is outside; one that reaches into the cube from any side,
+// or lies beyond two planes only in part, is not.
+TEST(Raster, BoxOutsideFrustumOnEachPlane) {
+  const mat4 id(1.0f);
+  const vec3 half(0.25f);
+  for (const vec3& c : {vec3(1.5f, 0, 0), vec3(-1.5f, 0, 0), vec3(0, 1.5f, 0), vec3(0, -1.5f, 0),
+                        vec3(0, 0, -1.5f)})
+    EXPECT_TRUE(box_outside_frustum(c - half, c + half, id)) << c.x << " " << c.y << " " << c.z;
+  for (const vec3& c : {vec3(1.1f, 0, 0), vec3(-1.1f, 0, 0), vec3(0, 1.1f, 0), vec3(0, -1.1f, 0),
+                        vec3(0, 0, -1.1f), vec3(0, 0, 0), vec3(0, 0, 1.5f), vec3(1.1f, 1.1f, 0)})
+    EXPECT_FALSE(box_outside_frustum(c - half, c + half, id)) << c.x << " " << c.y << " " << c.z;
 }
 
 TEST(Raster, FanCoversEveryPixelExactlyOnce) {
