@@ -14,6 +14,7 @@
 #include <limits>
 #include <random>
 #include <vector>
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -45,17 +46,17 @@ TEST(ExpLog, WithinTwoUlpOfLongDouble) {
   double worst_exp = 0.0, worst_log = 0.0;
   for (int i = 0; i < 200000; ++i) {
     const double x = i < 4 ? double(i) * 0.5 : ux(rng);
-    worst_exp = std::max(worst_exp, ulps(exp_one(x), std::exp((long double)x)));
+    worst_exp = test::worst_of(worst_exp, ulps(exp_one(x), std::exp((long double)x)));
     const double y = std::exp(ul(rng));  // log's arguments over [e^-690, e^700]
-    worst_log = std::max(worst_log, ulps(log_one(y), std::log((long double)y)));
+    worst_log = test::worst_of(worst_log, ulps(log_one(y), std::log((long double)y)));
   }
   // Arguments near 1 from both sides (small results: no cancellation allowed) and at the
   // mantissa steps.
   for (int i = 1; i < 20000; ++i) {
     const double y = i % 2 ? 1.0 + 1e-7 * i : 1.0 - 1e-7 * i;
-    worst_log = std::max(worst_log, ulps(log_one(y), std::log((long double)y)));
+    worst_log = test::worst_of(worst_log, ulps(log_one(y), std::log((long double)y)));
     const double z = std::ldexp(1.0 + double(i % 16) / 16.0, i % 40 - 20) * (1.0 + 1e-13 * (i % 7));
-    worst_log = std::max(worst_log, ulps(log_one(z), std::log((long double)z)));
+    worst_log = test::worst_of(worst_log, ulps(log_one(z), std::log((long double)z)));
   }
   // Exact points.
   EXPECT_EQ(exp_one(0.0), 1.0);
@@ -78,7 +79,7 @@ TEST(ExpLog, FloatExpWithinTwoUlpOfLongDouble) {
   double worst = 0.0;
   for (int i = 0; i < 200000; ++i) {
     const float x = u(rng);
-    worst = std::max(worst, ulps_f(expf_one(x), std::exp((long double)x)));
+    worst = test::worst_of(worst, ulps_f(expf_one(x), std::exp((long double)x)));
   }
   EXPECT_EQ(expf_one(0.0f), 1.0f);
   EXPECT_LE(worst, 2.0);
@@ -101,10 +102,10 @@ TEST(ExpLog, WideExpAndLogHoldFloatPrecisionOverDoublesRange) {
   double worst_exp = 0.0, worst_log = 0.0;
   auto check_exp = [&](float x) {
     const long double exact = std::exp((long double)x);
-    worst_exp = std::max(worst_exp, double(std::fabs((long double)expw_one(x) / exact - 1.0L)));
+    worst_exp = test::worst_of(worst_exp, double(std::fabs((long double)expw_one(x) / exact - 1.0L)));
   };
   auto check_log = [&](double y) {
-    worst_log = std::max(worst_log, double(std::fabs((long double)logw_one(y) - std::log((long double)y))));
+    worst_log = test::worst_of(worst_log, double(std::fabs((long double)logw_one(y) - std::log((long double)y))));
   };
   for (int i = 0; i < 200000; ++i) {
     check_exp(ux(rng));

@@ -83,7 +83,7 @@ void exact_bary(const std::vector<vec3>& tri, int px, int py, long double b[3]) 
 }
 
 // Largest |bary − exact| over the shaded pixels, and the largest relative error of 1/w
-// (1 / Σ b_i w_i).
+// (1 / Σ b_i w_i). A NaN error is kept (std::max would drop it and pass a NaN barycentric).
 double worst_error(const std::vector<vec3>& tri, const std::vector<BaryFragment>& got, double* worst_inv_w) {
   double worst = 0.0;
   *worst_inv_w = 0.0;
@@ -92,11 +92,13 @@ double worst_error(const std::vector<vec3>& tri, const std::vector<BaryFragment>
     exact_bary(tri, s.x, s.y, b);
     long double w = 0;
     for (int i = 0; i < 3; ++i) {
-      worst = std::max(worst, double(std::fabs(s.bary[i] - b[i])));
+      const double e = double(std::fabs(s.bary[i] - b[i]));
+      if (!(e <= worst)) worst = e;
       w += b[i] * tri[i].z;
     }
     const long double inv_w = 1 / w;
-    *worst_inv_w = std::max(*worst_inv_w, double(std::fabs(s.inv_w - inv_w) / inv_w));
+    const double e = double(std::fabs(s.inv_w - inv_w) / inv_w);
+    if (!(e <= *worst_inv_w)) *worst_inv_w = e;
   }
   return worst;
 }

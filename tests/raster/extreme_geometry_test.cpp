@@ -20,6 +20,7 @@
 
 #include "core/scene.h"
 #include "raster/pipeline.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -109,7 +110,7 @@ struct DepthStats {
   size_t pixels = 0;
   void add(double iw_raster, double depth) {
     ++pixels;
-    worst_rel = std::max(worst_rel, std::fabs(1.0 / iw_raster - depth) / depth);
+    worst_rel = test::worst_of(worst_rel, std::fabs(1.0 / iw_raster - depth) / depth);
   }
 };
 
@@ -355,7 +356,7 @@ TEST(ExtremeGeometry, QuadFarFromTheOriginTiltedCamera) {
       if (p.count[i] == (h ? 1 : 0)) {
         if (h) {
           ++covered;
-          worst = std::max(worst, std::fabs(1.0 / p.inv_w[i] - *h) / *h);
+          worst = test::worst_of(worst, std::fabs(1.0 / p.inv_w[i] - *h) / *h);
         }
         continue;
       }

@@ -6,6 +6,7 @@
 #include "core/gbuffer_shading.h"
 #include "raster/gbuffer_pass.h"
 #include "scenes/scene_library.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -47,8 +48,8 @@ TEST(GBufferShadingPass, AffineVertexAttributesGiveTheirClosedForm) {
       ++flipped;
     }
     const dvec2 uv(p.x + 2.0 * p.z, p.y - p.z);
-    worst_n = std::max(worst_n, glm::length(dvec3(a.normal) - n));
-    worst_uv = std::max(worst_uv, glm::length(dvec2(a.uv) - uv));
+    worst_n = test::worst_of(worst_n, glm::length(dvec3(a.normal) - n));
+    worst_uv = test::worst_of(worst_uv, glm::length(dvec2(a.uv) - uv));
   }
   // Both sides of the two-sided rule are exercised (measured: 68,555 of 76,800 flipped).
   ASSERT_GT(covered, g.pixel_count() / 2);

@@ -8,6 +8,7 @@
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_library.h"
 #include "test_paths.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -32,7 +33,7 @@ double vertex_set_distance(const Mesh& a, const Mesh& b) {
     for (const vec3& p : from.positions) {
       float best = INFINITY;
       for (const vec3& q : to.positions) best = std::min(best, glm::dot(p - q, p - q));
-      worst = std::max(worst, std::sqrt(double(best)));
+      worst = test::worst_of(worst, std::sqrt(double(best)));
     }
   }
   return worst;

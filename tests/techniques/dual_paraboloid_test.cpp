@@ -16,6 +16,7 @@
 #include "techniques/pipeline/paraboloid_tess.h"
 #include "techniques/registry/technique.h"
 #include "test_scenes.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -44,7 +45,7 @@ TEST(DualParaboloid, MapInverseAndRenderAgree) {
     const vec2 st = face_texel_coords(face, d);
     ASSERT_TRUE(st.x >= 3.0f && st.x <= float(face.width) - 3.0f) << st.x;  // inside the disk
     const vec3 back = face_texel_direction(face, st.x, st.y);
-    worst_dir = std::max(worst_dir, double(glm::length(back - d)));
+    worst_dir = test::worst_of(worst_dir, double(glm::length(back - d)));
     ParaboloidProjection pp;
     pp.centre = light;
     pp.right = face.right;
@@ -58,7 +59,7 @@ TEST(DualParaboloid, MapInverseAndRenderAgree) {
     // NDC → texel coordinates as the rasterizer maps them (x right, y down).
     const vec2 from_clip((c.x / c.w * 0.5f + 0.5f) * float(face.width),
                          (0.5f - c.y / c.w * 0.5f) * float(face.height));
-    worst_texel = std::max(worst_texel, double(glm::length(from_clip - st)));
+    worst_texel = test::worst_of(worst_texel, double(glm::length(from_clip - st)));
     EXPECT_NEAR(c.w, 2.5f, 1e-5f);
     EXPECT_GE(c.z, -c.w);  // kept by the near-plane clip
   }

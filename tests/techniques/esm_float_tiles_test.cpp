@@ -16,6 +16,7 @@
 #include "techniques/filters/esm/esm_tile_rows.h"
 #include "techniques/filters/moments_common/moment_filter.h"
 #include "techniques/pipeline/texel_tiles.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -121,8 +122,8 @@ TEST(EsmFloatTiles, TakeTheTilesTheirRangeAllowsWithinTheAnalysedBound) {
                   (x_max + 2.0 * k + 4.0) * 0x1p-24 + 2e-7 + 3e-8 + half_ulp(truth);
               const double err = std::fabs(double(got) - truth);
               ASSERT_LE(err, bound) << x << "," << y;
-              worst_ratio = std::max(worst_ratio, err / bound);
-              worst_error = std::max(worst_error, err);
+              worst_ratio = test::worst_of(worst_ratio, err / bound);
+              worst_error = test::worst_of(worst_error, err);
             }
         }
       EXPECT_EQ(left, expect_left);

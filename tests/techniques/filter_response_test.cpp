@@ -12,6 +12,7 @@
 #include "techniques/pipeline/light_map.h"
 #include "techniques/lookup/map_receiver.h"
 #include "test_scenes.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -230,7 +231,7 @@ TEST(FilterResponse, EvsmOverAFlatOccluderIsChebyshevInEachWarp) {
           const ShadowResult res = test::run(spec, c.scene, c.g);
           for (size_t i = 0; i < c.r.size(); ++i) {
             const double want = evsm_closed_form(c.r[i], cp, 3.0, mv, moments == 4);
-            worst = std::max(worst, std::fabs(double(res.mask.data[i]) - want));
+            worst = test::worst_of(worst, std::fabs(double(res.mask.data[i]) - want));
             EXPECT_NEAR(res.mask.data[i], want, 1e-4) << spec << " receiver " << i;
           }
         }

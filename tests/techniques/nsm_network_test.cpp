@@ -15,6 +15,7 @@
 #include "core/parallel.h"
 #include "techniques/nsm/nsm_conv.h"
 #include "techniques/nsm/nsm_network.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -189,7 +190,7 @@ TEST(NsmNetwork, ConvPairAndPoolMatchDoubleWithinTheRoundingBound) {
         const size_t k = (size_t(y) * 10 + x) * 17 + o;
         const double err = std::fabs(out.px(y, x)[o] - r.v[k]);
         ASSERT_LE(err, r.bound[k]) << y << " " << x << " " << o;
-        worst = std::max(worst, err / r.bound[k]);
+        worst = test::worst_of(worst, err / r.bound[k]);
       }
   // The pool: the mean of the 4 values; its fp32 rounding adds γ_3 of their mean magnitude.
   for (int y = 0; y < 3; ++y)
@@ -310,7 +311,7 @@ TEST(NsmNetwork, SixteenBitStorageStaysNearFp32) {
   for (const NsmPrecision p : {NsmPrecision::f16, NsmPrecision::bf16}) {
     nsm_forward(net, planes.data(), W, H, low.data(), p);
     double worst = 0;
-    for (size_t i = 0; i < f32.size(); ++i) worst = std::max(worst, double(std::fabs(low[i] - f32[i])));
+    for (size_t i = 0; i < f32.size(); ++i) worst = test::worst_of(worst, double(std::fabs(low[i] - f32[i])));
     std::printf("%s storage: max |output − fp32 output| %.3g\n", nsm_precision_name(p), worst);
     // Relative storage rounding 2^−11 (f16) or 2^−8 (bf16) per stored tensor, through ~6 stored
     // tensors and a sigmoid of slope ≤ 1/4, on activations of order 1: far below these.

@@ -13,6 +13,7 @@
 #include "techniques/filters/pcss/pcss_scale.h"
 #include "techniques/registry/technique.h"
 #include "test_scenes.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -82,7 +83,7 @@ TEST(Pcss, TexelsPerRadianIsTheInverseAngleOfATexelStep) {
         for (const vec2 e : steps) {
           const double h = 0.25;
           const double measured = 2 * h / texel_angle(f, st - float(h) * e, st + float(h) * e);
-          worst = std::max(worst, std::fabs(pcss_texels_per_radian(f, st) / measured - 1.0));
+          worst = test::worst_of(worst, std::fabs(pcss_texels_per_radian(f, st) / measured - 1.0));
           ++checked;
         }
       }

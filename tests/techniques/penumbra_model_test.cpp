@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "techniques/filters/pcss/penumbra_model.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -104,7 +105,7 @@ TEST(PenumbraModel, ProfileMatchesThe3DBruteForce) {
     for (int i = 0; i <= 24; ++i) {
       const double x = x0 + (x1 - x0) * i / 24.0;
       const double exact = double(disk_lit_fraction_3d(c.re, x, c.zf, m.z_m, m.r_s, 240, 500));
-      worst = std::max(worst, std::fabs(penumbra_lit_fraction(m, c.re, c.zf, x) - exact));
+      worst = test::worst_of(worst, std::fabs(penumbra_lit_fraction(m, c.re, c.zf, x) - exact));
       xs.push_back(x);
       vs.push_back(exact);
     }

@@ -8,6 +8,7 @@
 
 #include "techniques/pipeline/light_faces.h"
 #include "techniques/lookup/map_receiver.h"
+#include "tests/worst_of.h"
 
 namespace shadowlab {
 namespace {
@@ -51,7 +52,7 @@ TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
         const double gy = (plane_distance(f, st.x, st.y + h, q, n, inv_far) -
                            plane_distance(f, st.x, st.y - h, q, n, inv_far)) / (2 * h);
         const double scale = std::max(std::hypot(gx, gy), 1e-9);
-        worst = std::max(worst, std::hypot(g.x - gx, g.y - gy) / scale);
+        worst = test::worst_of(worst, std::hypot(g.x - gx, g.y - gy) / scale);
         ++checked;
       }
     }
@@ -90,7 +91,7 @@ TEST(ReceiverPlane, ParaboloidGradientIsTheDerivativeOfThePlaneDistance) {
       const double gy = (plane_distance(f, st.x, st.y + h, q, n, inv_far) -
                          plane_distance(f, st.x, st.y - h, q, n, inv_far)) / (2 * h);
       const double scale = std::max(std::hypot(gx, gy), 1e-9);
-      worst = std::max(worst, std::hypot(g.x - gx, g.y - gy) / scale);
+      worst = test::worst_of(worst, std::hypot(g.x - gx, g.y - gy) / scale);
       ++checked;
     }
   }
