@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "metric/box_blur.h"
@@ -60,6 +61,16 @@ TEST(Contour, BlockSpansTwoRows) {
   const ImageU8 m = contour_mask(c, 0.5);
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 3; ++x) EXPECT_EQ(m.at(x, y), (x <= 1 && y <= 1) ? 1 : 0) << x << "," << y;
+}
+
+// A test contour without a pixel at the reference's level is infinitely far (contour.h).
+TEST(Contour, NoTestContourIsInfinitelyFar) {
+  ImageU8 ref(16, 8, 1, 0), none(16, 8, 1, 0);
+  ref.at(5, 3) = 0xFF;
+  EXPECT_EQ(contour_distance_rms(none, ref), std::numeric_limits<double>::infinity());
+  none.at(9, 3) = 0x01;  // a pixel of another level only
+  EXPECT_EQ(contour_distance_rms(none, ref, 0x02), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(contour_distance_rms(none, ref, 0x01), 4.0);
 }
 
 TEST(Contour, ShiftedHorizontalEdgeGivesShiftAsRmsDistance) {

@@ -357,6 +357,15 @@ TEST(Flip, BadInputIsRejected) {
   EXPECT_THROW(flip_error_map(a, a, 0.5), InputError);  // the edge detector would be 0/0
   for (float v : flip_error_map(mask_scene(8, 8, 2, 0.0f), a, 1.0).data) ASSERT_TRUE(std::isfinite(v));
   EXPECT_THROW(flip_error_map(ImageF(), ImageF()), InputError);
+  // One empty image is named as such, not as a size mismatch.
+  for (const bool test_empty : {true, false}) {
+    try {
+      flip_error_map(test_empty ? ImageF() : a, test_empty ? a : ImageF());
+      ADD_FAILURE() << test_empty;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("empty image"), std::string::npos) << e.what();
+    }
+  }
   // The observer's range is [1, 1000] pixels per degree, both ends included.
   EXPECT_NO_THROW(flip_error_map(a, a, 1.0));
   EXPECT_NO_THROW(flip_error_map(a, a, 1000.0));

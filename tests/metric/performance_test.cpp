@@ -20,6 +20,9 @@ TEST(Performance, HandValues) {
   EXPECT_NEAR(performance_score({7.0, 2.0}, 50.0), 0.8, 1e-12);
   EXPECT_EQ(performance_score({4.0, 4.0}), 1.0);  // free shadows
   EXPECT_EQ(performance_score({3.0, 4.0}), 1.0);  // timing noise below zero: capped at 1
+  // Any difference below zero scores 1, also one larger than a frame (the formula alone would
+  // give a negative score there, clamped to 0).
+  EXPECT_EQ(performance_score({1.0, 100.0}), 1.0);
 }
 
 TEST(Performance, BadTimingsThrow) {

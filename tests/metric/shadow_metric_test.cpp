@@ -201,6 +201,7 @@ TEST(ShadowMetric, TableListsEverySubmetric) {
   r.acne = 0.9999994;
   r.has_performance = true;
   r.performance = 0.5;
+  r.lit = std::numeric_limits<double>::infinity();
   const std::string t = metric_report_table(r);
   auto line_of = [&](const std::string& name) {
     const size_t at = t.find(name + " ");
@@ -211,6 +212,7 @@ TEST(ShadowMetric, TableListsEverySubmetric) {
   EXPECT_EQ(line_of("c50").find("-0"), std::string::npos) << t;
   EXPECT_NE(line_of("acne").find("0.999999"), std::string::npos) << t;
   EXPECT_NE(line_of("performance").find("0.500000"), std::string::npos) << t;
+  EXPECT_NE(line_of("lit").find("null"), std::string::npos) << t;  // not finite: null, as in JSON
 }
 
 TEST(ShadowMetric, BadInputThrowsInputError) {
