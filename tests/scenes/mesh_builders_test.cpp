@@ -72,6 +72,10 @@ TEST(MeshBuilders, SphereIsOutwardWithRadialNormals) {
   for (size_t i = 0; i < m.positions.size(); ++i)
     EXPECT_NEAR(glm::length(m.normals[i] - (m.positions[i] - c) / 0.5f), 0.0f, 1e-5f);
   expect_normals_on_front(m);
+  // The coarsest sphere the builder takes: 3 segments, 2 rings (a triangular bipyramid).
+  Mesh coarse;
+  add_uv_sphere(coarse, c, 0.5f, 3, 2);
+  EXPECT_EQ(coarse.triangle_count(), 2u * 3u * 1u);
 }
 
 TEST(MeshBuilders, CylinderIsClosedAndOutward) {

@@ -45,6 +45,15 @@ void expect_near(const vec3& a, const vec3& b, const std::string& what) {
 
 // scale 2, then 90° about y ((x, y, z) → (z, y, −x)), then translate (1, 2, 3): e_x → (1, 2, 1),
 // e_y → (1, 4, 3), e_z → (3, 2, 3).
+// A scene file is named by its .json extension, in any case; other names are not.
+TEST(SceneFile, PathsEndingInJsonAreSceneFiles) {
+  EXPECT_TRUE(is_scene_file_path("scenes/room.json"));
+  EXPECT_TRUE(is_scene_file_path("ROOM.JSON"));
+  EXPECT_FALSE(is_scene_file_path("room.obj"));
+  EXPECT_FALSE(is_scene_file_path("json"));
+  EXPECT_FALSE(is_scene_file_path("room.xjson"));
+}
+
 TEST(SceneFile, ModelTransformsAndViewKeys) {
   write_triangle_obj();
   const std::string path = write("base.json", R"({
