@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +52,22 @@ const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 // The start of a binary file (ELF header bytes, then a PNG signature).
 const char kBinary[] = {'\x7f', 'E',    'L', 'F', '\x02', '\x01', '\x01', '\0',   '\0',
                         '\0',   '\x89', 'P', 'N', 'G',    '\r',   '\n',   '\x1a', '\n'};
+
+// Texture coordinates on some corners only: the others get (0, 0), and a note says so; on
+// every corner, or on none, there is no note.
+TEST(ObjLoader, PartialTextureCoordinatesAreNoted) {
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nvt 0.5 0.5\n";
+  for (const auto& [name, faces, noted] :
+       {std::tuple<const char*, const char*, bool>{"vt_some.obj", "f 1/1 2/1 3/1\nf 1 3 4\n", true},
+        {"vt_all.obj", "f 1/1 2/1 3/1\nf 1/1 3/1 4/1\n", false},
+        {"vt_none.obj", "f 1 2 3\nf 1 3 4\n", false}}) {
+    std::vector<std::string> notes;
+    load_obj_scene(write_file(name, quad + faces), &notes);
+    bool found = false;
+    for (const std::string& n : notes) found = found || n.find("texture coordinates on only some corners") != std::string::npos;
+    EXPECT_EQ(found, noted) << name;
+  }
+}
 
 TEST(ObjLoader, MissingFileNamesIt) {
   const std::string path = test::binary_path("core/obj/missing.obj");
