@@ -22,30 +22,33 @@ Isa detect_cpu_isa() {
 #endif
 }
 
-Isa resolve_process_isa() {
-  Isa isa = cpu_isa();
+// The process's set from the CPU and the environment, and whether the environment named one.
+struct EnvironmentIsa {
+  Isa isa;
+  bool named;
+};
+
+EnvironmentIsa resolve_environment_isa() {
+  const Isa cpu = cpu_isa();
   const char* scalar = std::getenv("SHADOWLAB_SCALAR");
-  if (scalar && std::strcmp(scalar, "1") == 0) return Isa::scalar;
+  if (scalar && std::strcmp(scalar, "1") == 0) return {Isa::scalar, true};
   // SHADOWLAB_ISA names the widest set to use; never wider than the CPU's (the programs refuse
   // such a request before any work: lab/environment.cpp).
   const char* named = std::getenv("SHADOWLAB_ISA");
-  if (named && std::strcmp(named, "scalar") == 0) return Isa::scalar;
-  if (named && std::strcmp(named, "avx2") == 0 && isa > Isa::avx2) isa = Isa::avx2;
-  return isa;
+  if (named && std::strcmp(named, "scalar") == 0) return {Isa::scalar, true};
+  if (named && std::strcmp(named, "avx2") == 0) return {cpu > Isa::avx2 ? Isa::avx2 : cpu, true};
+  return {cpu, named && std::strcmp(named, "avx512") == 0};
+}
+
+const EnvironmentIsa& environment_isa() {
+  static const EnvironmentIsa e = resolve_environment_isa();
+  return e;
 }
 
 // ScopedIsa's override: -1 when none, else the Isa's value.
 std::atomic<int> g_override{-1};
 
-bool isa_named_by_environment() {
-  const char* scalar = std::getenv("SHADOWLAB_SCALAR");
-  const char* named = std::getenv("SHADOWLAB_ISA");
-  return (scalar && std::strcmp(scalar, "1") == 0) ||
-         (named && (std::strcmp(named, "scalar") == 0 || std::strcmp(named, "avx2") == 0 ||
-                    std::strcmp(named, "avx512") == 0));
-}
-
-bool cpu_is_intel() {
+bool detect_intel() {
 #if defined(SHADOWLAB_EMULATE_SIMD)
   return false;
 #elif defined(__x86_64__) || defined(__i386__)
@@ -54,6 +57,11 @@ bool cpu_is_intel() {
 #else
   return false;
 #endif
+}
+
+bool cpu_is_intel() {
+  static const bool intel = detect_intel();
+  return intel;
 }
 
 // The widest table worth running for a family on this CPU's vendor (docs/simd.md).
@@ -88,15 +96,12 @@ std::vector<Isa> cpu_isas() {
 Isa process_isa() {
   const int forced = g_override.load(std::memory_order_relaxed);
   if (forced >= 0) return Isa(forced);
-  static const Isa isa = resolve_process_isa();
-  return isa;
+  return environment_isa().isa;
 }
 
 Isa family_isa(IsaFamily family) {
   const Isa isa = process_isa();
-  if (g_override.load(std::memory_order_relaxed) >= 0) return isa;
-  static const bool named = isa_named_by_environment();
-  if (named) return isa;
+  if (g_override.load(std::memory_order_relaxed) >= 0 || environment_isa().named) return isa;
   const Isa best = family_best(family);
   return best < isa ? best : isa;
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "techniques/pipeline/light_faces.h"
 #include "techniques/lookup/map_receiver.h"
@@ -23,21 +24,23 @@ double plane_distance(const LightFace& f, double sx, double sy, const vec3& q, c
   return num / den * inv_far;
 }
 
-// On every cube and tetrahedral face, at random receivers whose plane is at least 30° from
-// grazing (inside the gradient's cosine clamp), the gradient equals the central difference over
-// ±0.5 texel. Measured worst relative error 5.4e-4 (float directions and the difference's own
-// curvature term); bound 2e-3.
-TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
-  std::mt19937 rng(5);
+// The largest relative error of grad(f, st, q, n, inv_far) against the central difference of
+// the plane distance over ±h texels, at `trials` random receivers per face of each layout: texel
+// coordinates in the middle `span` of the face, planes at least 30° from grazing (inside the
+// gradients' cosine clamp). `checked` counts the receivers.
+template <class Grad>
+double worst_gradient_error(const std::vector<FaceLayout>& layouts, unsigned seed, int trials,
+                            float span, double h, const Grad& grad, int& checked) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const float lo = 0.5f * (1.0f - span);
   double worst = 0.0;
-  int checked = 0;
-  for (const FaceLayout& L : {cube_layout(256, 2), tetra_layout(256, 2)})
-    for (size_t fi = 0; fi < L.faces.size(); ++fi) {
-      const LightFace& f = L.faces[fi];
-      for (int trial = 0; trial < 200; ++trial) {
-        const float sx = 0.2f * float(f.width) + 0.6f * float(f.width) * (0.5f + 0.5f * u(rng));
-        const float sy = 0.2f * float(f.height) + 0.6f * float(f.height) * (0.5f + 0.5f * u(rng));
+  checked = 0;
+  for (const FaceLayout& L : layouts)
+    for (const LightFace& f : L.faces)
+      for (int trial = 0; trial < trials; ++trial) {
+        const float sx = lo * float(f.width) + span * float(f.width) * (0.5f + 0.5f * u(rng));
+        const float sy = lo * float(f.height) + span * float(f.height) * (0.5f + 0.5f * u(rng));
         const vec3 dir = glm::normalize(face_texel_direction(f, sx, sy));
         const vec3 q = dir * (1.0f + 2.0f * (0.5f + 0.5f * u(rng)));
         vec3 n = glm::normalize(vec3(u(rng), u(rng), u(rng)));
@@ -45,8 +48,7 @@ TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
         if (-glm::dot(n, dir) < 0.5f) continue;  // >= 30° from grazing
         const double inv_far = 1.0 / 20.0;
         const vec2 st = face_texel_coords(f, q);
-        const vec2 g = receiver_plane_gradient(f, q, n, float(inv_far));
-        const double h = 0.5;
+        const vec2 g = grad(f, st, q, n, float(inv_far));
         const double gx = (plane_distance(f, st.x + h, st.y, q, n, inv_far) -
                            plane_distance(f, st.x - h, st.y, q, n, inv_far)) / (2 * h);
         const double gy = (plane_distance(f, st.x, st.y + h, q, n, inv_far) -
@@ -55,46 +57,34 @@ TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
         worst = test::worst_of(worst, std::hypot(g.x - gx, g.y - gy) / scale);
         ++checked;
       }
-    }
+  return worst;
+}
+
+// On every cube and tetrahedral face the gradient equals the central difference over ±0.5
+// texel. Measured worst relative error 5.4e-4 (float directions and the difference's own
+// curvature term); bound 2e-3.
+TEST(ReceiverPlane, GradientIsTheDerivativeOfThePlaneDistance) {
+  int checked = 0;
+  const double worst = worst_gradient_error(
+      {cube_layout(256, 2), tetra_layout(256, 2)}, 5, 200, 0.6f, 0.5,
+      [](const LightFace& f, vec2, const vec3& q, const vec3& n, float inv_far) {
+        return receiver_plane_gradient(f, q, n, inv_far);
+      },
+      checked);
   RecordProperty("worst_relative_error", std::to_string(worst));
   EXPECT_GT(checked, 500);
   EXPECT_LT(worst, 2e-3);
 }
 
 // The paraboloid faces' gradient (central differences over ±½ texel of the plane distance)
-// against the derivative of the plane distance, by a difference over ±0.1 texel in double, at
-// random receivers on both hemispheres' inner discs (≥ 30° from grazing). The two differ by the
-// ±½ difference's curvature term and float rounding: measured worst relative error 7.3e-4;
-// bound 3e-3 (a one-sided half-texel difference is off by about a half).
+// against the derivative of the plane distance, by a difference over ±0.1 texel, on both
+// hemispheres' inner discs. The two differ by the ±½ difference's curvature term and float
+// rounding: measured worst relative error 7.3e-4; bound 3e-3 (a one-sided half-texel
+// difference is off by about a half).
 TEST(ReceiverPlane, ParaboloidGradientIsTheDerivativeOfThePlaneDistance) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  double worst = 0.0;
   int checked = 0;
-  const FaceLayout L = dual_paraboloid_layout(256, 2);
-  for (size_t fi = 0; fi < L.faces.size(); ++fi) {
-    const LightFace& f = L.faces[fi];
-    for (int trial = 0; trial < 300; ++trial) {
-      const float sx = 0.3f * float(f.width) + 0.4f * float(f.width) * (0.5f + 0.5f * u(rng));
-      const float sy = 0.3f * float(f.height) + 0.4f * float(f.height) * (0.5f + 0.5f * u(rng));
-      const vec3 dir = glm::normalize(face_texel_direction(f, sx, sy));
-      const vec3 q = dir * (1.0f + 2.0f * (0.5f + 0.5f * u(rng)));
-      vec3 n = glm::normalize(vec3(u(rng), u(rng), u(rng)));
-      if (glm::dot(n, dir) > 0.0f) n = -n;
-      if (-glm::dot(n, dir) < 0.5f) continue;
-      const double inv_far = 1.0 / 20.0;
-      const vec2 st(sx, sy);
-      const vec2 g = receiver_plane_gradient_numeric(f, st, q, n, float(inv_far));
-      const double h = 0.1;
-      const double gx = (plane_distance(f, st.x + h, st.y, q, n, inv_far) -
-                         plane_distance(f, st.x - h, st.y, q, n, inv_far)) / (2 * h);
-      const double gy = (plane_distance(f, st.x, st.y + h, q, n, inv_far) -
-                         plane_distance(f, st.x, st.y - h, q, n, inv_far)) / (2 * h);
-      const double scale = std::max(std::hypot(gx, gy), 1e-9);
-      worst = test::worst_of(worst, std::hypot(g.x - gx, g.y - gy) / scale);
-      ++checked;
-    }
-  }
+  const double worst = worst_gradient_error({dual_paraboloid_layout(256, 2)}, 7, 300, 0.4f, 0.1,
+                                            receiver_plane_gradient_numeric, checked);
   RecordProperty("worst_relative_error", std::to_string(worst));
   EXPECT_GT(checked, 200);
   EXPECT_LT(worst, 3e-3);
