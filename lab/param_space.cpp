@@ -11,20 +11,10 @@
 #include "core/spec.h"
 #include "core/parse_number.h"
 #include "techniques/registry/technique.h"
+#include "lab/cli.h"
 
 namespace shadowlab {
 namespace {
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  for (;;) {
-    const size_t p = s.find(sep, start);
-    out.push_back(s.substr(start, p == std::string::npos ? std::string::npos : p - start));
-    if (p == std::string::npos) return out;
-    start = p + 1;
-  }
-}
 
 // A computed value as text: whole numbers below 1e15 exactly, others to 4
 // significant digits; an exponent is written without '+' ("1e18"; specs refuse '+').

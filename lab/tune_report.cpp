@@ -18,29 +18,6 @@ namespace {
 // Indices and counts read back are at most this (a tune never has more evaluations).
 constexpr uint64_t kMaxIndex = uint64_t(1) << 40;
 
-// The MetricReport fields written per evaluation, in column order.
-std::vector<std::pair<const char*, double MetricReport::*>> report_fields() {
-  return {{"c10", &MetricReport::c10},       {"c50", &MetricReport::c50},
-          {"c90", &MetricReport::c90},       {"dark", &MetricReport::dark},
-          {"lit", &MetricReport::lit},       {"acne", &MetricReport::acne},
-          {"noise", &MetricReport::noise},   {"detail", &MetricReport::detail},
-          {"fidelity", &MetricReport::fidelity}, {"aesthetics", &MetricReport::aesthetics},
-          {"performance", &MetricReport::performance}, {"total", &MetricReport::total},
-          {"ssim", &MetricReport::ssim},     {"rmse", &MetricReport::rmse},
-          {"psnr", &MetricReport::psnr},     {"flip_mean", &MetricReport::flip_mean}};
-}
-
-std::vector<std::pair<const char*, uint64_t WorkCounts::*>> work_fields() {
-  return {{"triangles_submitted", &WorkCounts::triangles_submitted},
-          {"triangles_binned", &WorkCounts::triangles_binned},
-          {"texels_rendered", &WorkCounts::texels_rendered},
-          {"texels_filtered", &WorkCounts::texels_filtered},
-          {"pixels_looked_up", &WorkCounts::pixels_looked_up},
-          {"taps", &WorkCounts::taps},
-          {"bytes_written", &WorkCounts::bytes_written},
-          {"bytes_read", &WorkCounts::bytes_read}};
-}
-
 nlohmann::json eval_json(const TuneEval& e) {
   nlohmann::json j;
   j["index"] = e.index;
@@ -53,7 +30,7 @@ nlohmann::json eval_json(const TuneEval& e) {
   j["height"] = e.height;
   j["spp"] = e.spp;
   j["objective"] = e.objective;
-  for (const auto& [k, m] : report_fields()) j[k] = e.report.*m;
+  for (const auto& [k, m] : tune_report_fields()) j[k] = e.report.*m;
   j["has_performance"] = e.report.has_performance;
   j["faces_ms"] = e.faces_ms;
   j["render_ms"] = e.render_ms;
@@ -61,7 +38,7 @@ nlohmann::json eval_json(const TuneEval& e) {
   j["map_ms"] = e.map_ms;
   j["lookup_ms"] = e.lookup_ms;
   j["shadow_ms"] = e.shadow_ms();
-  for (const auto& [k, m] : work_fields()) j["work"][k] = e.work.*m;
+  for (const auto& [k, m] : tune_work_fields()) j["work"][k] = e.work.*m;
   return j;
 }
 
@@ -78,7 +55,7 @@ TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   e.spp = int(json_uint(j, "spp", 1 << 30, where));
   e.objective = json_number(j, "objective", where);
   // A file written before FLIP joined the metric has no flip_mean (NaN: not measured).
-  for (const auto& [k, m] : report_fields())
+  for (const auto& [k, m] : tune_report_fields())
     e.report.*m = std::string(k) == "flip_mean" && !j.contains(k) ? std::nan("")
                                                                   : json_number(j, k, where);
   e.report.has_performance = json_bool(j, "has_performance", where);
@@ -87,7 +64,7 @@ TuneEval eval_from_json(const nlohmann::json& j, const std::string& where) {
   e.filter_ms = json_number(j, "filter_ms", where);
   e.map_ms = json_number(j, "map_ms", where);
   e.lookup_ms = json_number(j, "lookup_ms", where);
-  for (const auto& [k, m] : work_fields()) e.work.*m = json_uint(json_at(j, "work", where), k, UINT64_MAX, where);
+  for (const auto& [k, m] : tune_work_fields()) e.work.*m = json_uint(json_at(j, "work", where), k, UINT64_MAX, where);
   return e;
 }
 
@@ -99,6 +76,29 @@ std::string budget_text(double b, bool bytes) {
 }
 
 }  // namespace
+
+std::vector<std::pair<const char*, double MetricReport::*>> tune_report_fields() {
+  return {{"c10", &MetricReport::c10},       {"c50", &MetricReport::c50},
+          {"c90", &MetricReport::c90},       {"dark", &MetricReport::dark},
+          {"lit", &MetricReport::lit},       {"acne", &MetricReport::acne},
+          {"noise", &MetricReport::noise},   {"detail", &MetricReport::detail},
+          {"fidelity", &MetricReport::fidelity}, {"aesthetics", &MetricReport::aesthetics},
+          {"performance", &MetricReport::performance}, {"total", &MetricReport::total},
+          {"ssim", &MetricReport::ssim},     {"rmse", &MetricReport::rmse},
+          {"psnr", &MetricReport::psnr},     {"flip_mean", &MetricReport::flip_mean}};
+}
+
+std::vector<std::pair<const char*, uint64_t WorkCounts::*>> tune_work_fields() {
+  return {{"triangles_submitted", &WorkCounts::triangles_submitted},
+          {"triangles_binned", &WorkCounts::triangles_binned},
+          {"texels_rendered", &WorkCounts::texels_rendered},
+          {"texels_filtered", &WorkCounts::texels_filtered},
+          {"pixels_looked_up", &WorkCounts::pixels_looked_up},
+          {"taps", &WorkCounts::taps},
+          {"bytes_written", &WorkCounts::bytes_written},
+          {"bytes_read", &WorkCounts::bytes_read}};
+}
+
 
 std::vector<TuneSummary> tune_summaries(const TuneResult& r) {
   const size_t n_scenes = r.scenes.size();
@@ -214,17 +214,17 @@ std::string tune_table(const TuneResult& r, const TuneConfig& c) {
 void write_tune_csv(const std::string& path, const TuneResult& r, const nlohmann::json& provenance) {
   std::string s = "# provenance " + provenance.dump() + "\n";
   s += "index,rung,point,scene,technique,spec,width,height,spp,objective";
-  for (const auto& [k, m] : report_fields()) s += std::string(",") + k;
+  for (const auto& [k, m] : tune_report_fields()) s += std::string(",") + k;
   s += ",faces_ms,render_ms,filter_ms,map_ms,lookup_ms,shadow_ms";
-  for (const auto& [k, m] : work_fields()) s += std::string(",") + k;
+  for (const auto& [k, m] : tune_work_fields()) s += std::string(",") + k;
   s += "\n";
   for (const TuneEval& e : r.evals) {
     s += fmt::format("{},{},{},{},{},\"{}\",{},{},{},{}", e.index, e.rung, e.point, e.scene,
                      e.technique, e.spec, e.width, e.height, e.spp, e.objective);
-    for (const auto& [k, m] : report_fields()) s += fmt::format(",{}", e.report.*m);
+    for (const auto& [k, m] : tune_report_fields()) s += fmt::format(",{}", e.report.*m);
     s += fmt::format(",{},{},{},{},{},{}", e.faces_ms, e.render_ms, e.filter_ms, e.map_ms,
                      e.lookup_ms, e.shadow_ms());
-    for (const auto& [k, m] : work_fields()) s += fmt::format(",{}", e.work.*m);
+    for (const auto& [k, m] : tune_work_fields()) s += fmt::format(",{}", e.work.*m);
     s += "\n";
   }
   write_text_file(path, s);

@@ -5,6 +5,7 @@
 // how shards are merged: the merged report is computed by the same functions from the same
 // numbers, so it equals an unsharded run's.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +31,10 @@ std::vector<TuneSummary> tune_summaries(const TuneResult& r);
 // lowest point index; nullptr when none fits. technique empty: over every technique.
 const TuneSummary* best_under(const std::vector<TuneSummary>& s, double budget, bool bytes,
                               const std::string& technique = "");
+
+// The MetricReport and WorkCounts fields of an evaluation, in tune.csv's column order.
+std::vector<std::pair<const char*, double MetricReport::*>> tune_report_fields();
+std::vector<std::pair<const char*, uint64_t WorkCounts::*>> tune_work_fields();
 
 // The printed report: evaluations per rung, a table per budget kind (budget → best overall,
 // then the best of each technique), and both Pareto fronts.

@@ -7,9 +7,9 @@
 namespace shadowlab {
 
 // One JSON object on one line, keys in this order: c10 c50 c90 dark lit acne noise detail,
-// performance (only when has_performance), fidelity aesthetics total ssim rmse psnr. Numbers in
-// fixed notation with 6 decimals ("%.6f"); a non-finite value (none occurs in a report from
-// compute_metric) is written as null.
+// performance (only when has_performance), fidelity aesthetics total ssim rmse psnr flip_mean.
+// Numbers at full double precision (the shortest text that reads back to the same double); a
+// non-finite value (none occurs in a report from compute_metric) is written as null.
 std::string metric_report_json(const MetricReport& report);
 
 // Every submetric, group and extra on its own line ("name  value  meaning"), ending in '\n'.

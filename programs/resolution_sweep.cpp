@@ -3,7 +3,6 @@
 // a contact sheet of them in --out; with --plot, an SVG of total and fidelity against time.
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -12,69 +11,25 @@
 #include "lab/cli.h"
 #include "lab/output_folder.h"
 #include "lab/sweep.h"
-#include "raytrace/reference_cache.h"
-#include "scenes/scene_registry.h"
+#include "lab/sweep_command.h"
 
 using namespace shadowlab;
 
 int main(int argc, char** argv) {
   return run_main(argc, argv, [](int argc, char** argv) {
     CommandLine cl = make_command_line("resolution_sweep", "[flags]");
-    CommonOptions common;
-    add_common_options(cl, common);
-    SweepConfig c;
-    std::string techniques = "csm";
-    std::optional<int> spp, repeats_given;
-    bool quick = false, no_cache = false, plot_given = false;
-    std::string plot;
-    add_text(cl, "--techniques", "LIST", "comma-separated light-map technique specs without res (the ray tracer is the reference: --spp) (default: csm)", techniques);
-    add_int_list(cl, "--resolutions", "LIST", "shadow-map resolutions (default: 128,256,512,1024)", c.resolutions, 1, 8192);
-    add_int(cl, "--spp", "N", "reference samples per pixel (default 256; 1024 = the paper)", spp, 1, 1 << 20);
-    add_int(cl, "--repeats", "N", "timed runs, the median reported (default 5; 3 with --quick)", repeats_given, 1, 100000);
-    add_switch(cl, "--quick", "CI size: 320x240, 64 spp, 3 repeats (explicit flags still win)", quick);
-    add_switch(cl, "--no-cache", "do not read or write the reference cache", no_cache);
-    add_text(cl, "--plot", "FILE.svg", "also write score-vs-time plots with Pareto fronts (default: none)", plot, &plot_given);
-    std::string sheet = "mask";
-    std::optional<double> ambient;
-    add_text(cl, "--sheet", "KIND", "contact sheet of masks or shaded images: mask or shaded (default mask)", sheet);
-    add_double(cl, "--ambient", "A", "ambient level of the shaded images, [0, 1] (default 0.1)", ambient, 0.0, 1.0);
-    add_switch(cl, "--flip-map", "also write each row's LDR-FLIP error map of its shaded image against the reference's (PREFIX_flip.exr, .png)", c.flip_map);
-    std::string suite;
-    add_text(cl, "--suite", "NAME", "run every scene of a suite (hard: grazing, contact, depth_range, cluttered; all: those + default, foliage, bunny) instead of --scene: a table per scene in --out/SCENE/, then each setting's fidelity and total per scene with the mean and the worst (default: none)", suite);
-    std::string shard;
-    add_text(cl, "--shard", "i/N", "run only the rows (technique x resolution, in order) with index mod N == i, writing sweep_shardIofN.csv/.json; combine with build/programs/merge (default 0/1)", shard);
+    SweepCommand cmd;
+    add_sweep_flags(cl, cmd);
     if (!parse_command_line(cl, argc, argv)) return 0;
-    if (!shard.empty()) parse_shard(shard, c.shard, c.shards);
-    std::vector<std::string> suite_scenes;
-    if (!suite.empty()) {
-      suite_scenes = scene_suite(suite, "--suite");
-      reject_scene_with_suite(common);
-      if (!plot.empty() || plot_given) throw InputError("--plot", "is per scene; not with --suite");
-      if (c.shards > 1) throw InputError("--shard", "not with --suite (shard each scene's sweep instead)");
-    }
-    if (sheet != "mask" && sheet != "shaded")
-      throw InputError("--sheet", "expected mask or shaded, got '" + sheet + "'");
-    c.shaded_sheet = sheet == "shaded";
-    if (ambient) c.ambient = float(*ambient);
-    if (quick) {
-      if (!common.width) common.width = 320;
-      if (!common.height) common.height = 240;
-    }
-    c.techniques = spec_list_items(techniques, "--techniques");
-    c.spp = spp.value_or(quick ? 64 : 256);
-    c.repeats = repeats_given.value_or(quick ? 3 : 5);
-    c.cache_dir = no_cache ? "" : default_cache_dir();
-    c.out_dir = common.out;
-    c.progress = stderr_is_terminal();
-    c.max_memory = max_memory_bytes(common);
-    if (!suite_scenes.empty()) {
+    finish_sweep_command(cmd);
+    const CommonOptions& common = cmd.common;
+    SweepConfig& c = cmd.config;
+    const std::string& suite = cmd.suite;
+    const std::string& plot = cmd.plot;
+    const bool plot_given = cmd.plot_given;
+    if (!cmd.suite_scenes.empty()) {
       // Every scene built (and its inputs checked) before the first sweep.
-      std::vector<Scene> scenes;
-      for (const std::string& name : suite_scenes) {
-        CommonOptions o = common;
-        o.scene = name;
-        scenes.push_back(scene_from_options(o));
-      }
+      const std::vector<Scene> scenes = sweep_scenes(cmd);
       RunOutputs outputs(common.out, "--out");
       outputs.check_names({"sweep.csv", "sweep.json"});
       {
@@ -115,7 +70,7 @@ int main(int argc, char** argv) {
                   common.out.c_str());
       return 0;
     }
-    const Scene scene = scene_from_options(common);
+    const Scene scene = sweep_scenes(cmd)[0];
     if (c.shards > 1 && plot_given) throw InputError("--plot", "not with --shard: merge draws the plot");
     // Checked before the sweep, which can take minutes. A shard adds its files to the folder
     // the other shards write into.

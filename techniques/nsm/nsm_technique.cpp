@@ -86,6 +86,19 @@ uint64_t nsm_technique_bytes(const TechniqueSpec& spec, const Scene& scene, cons
          nsm_activation_estimate(w.arch, width, height);
 }
 
+NsmFeatures nsm_spec_features(const TechniqueSpec& spec, const Scene& scene, const GBuffer& g,
+                              bool every_candidate, const char* flag) {
+  const NsmParams p = parse_nsm(spec, flag);
+  const NsmWeights w = load_nsm_weights(p, flag);
+  const MapParams mp = nsm_base_map_params(p.res, p.layout);
+  LightMap map;
+  map.layout = map_layout(mp, scene);
+  render_light_map(scene, mp, nsm_faces_needed(scene, g, map.layout), map);
+  return compute_nsm_features(scene, g, p.res, map, nsm_scene_scale(scene),
+                              nsm_size_code(scene.light.radius),
+                              every_candidate ? nsm_feature_names() : w.features);
+}
+
 ShadowResult run_nsm(const TechniqueSpec& spec, const Scene& scene, const GBuffer& g,
                      const RunOptions& options) {
   const NsmParams p = parse_nsm(spec, options.flag);

@@ -35,6 +35,11 @@ NsmWeights load_nsm_weights(const NsmParams& p, const char* flag);
 
 ShadowResult run_nsm(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                      const RunOptions& options);
+// The network's input planes for `g`, as run_nsm computes them: the spec's base map rendered
+// (its needed faces), then the features its weights declare, or every candidate feature
+// (nsm_feature_names) with `every_candidate`.
+NsmFeatures nsm_spec_features(const TechniqueSpec& spec, const Scene& scene, const GBuffer& g,
+                              bool every_candidate, const char* flag);
 // The base map's faces and the network's stored activations at the GBuffer's size.
 uint64_t nsm_technique_bytes(const TechniqueSpec& spec, const Scene& scene, const GBuffer* g,
                              const char* flag);

@@ -40,12 +40,14 @@ def radius_code(radius):
 class Frame:
     """One .nsmf frame, checked and memory-mapped."""
 
-    def __init__(self, path, verify=True):
+    def __init__(self, path, verify=True, data=None):
+        """`data`: the file's bytes, already in memory (shadowlab.nsm_frame makes them
+        without a file); `path` then only names the frame in messages."""
         self.path = path
+        self._data = data
         try:
-            size = os.path.getsize(path)
-            with open(path, "rb") as f:
-                head = f.read(12)
+            size = len(data) if data is not None else os.path.getsize(path)
+            head = self._read(0, 12)
         except OSError as e:
             raise DataError(f"{path}: {e.strerror or e}")
         if len(head) < 12 or head[:4] != MAGIC:
@@ -55,9 +57,7 @@ class Frame:
             raise DataError(f"{path}: version {version}, expected {VERSION}")
         if hlen == 0 or hlen > MAX_HEADER or 12 + hlen + 8 > size:
             raise DataError(f"{path}: header length {hlen} does not fit the file")
-        with open(path, "rb") as f:
-            f.seek(12)
-            raw = f.read(hlen)
+        raw = self._read(12, hlen)
         try:
             hdr = json.loads(raw.decode("utf-8"))
         except (UnicodeDecodeError, json.JSONDecodeError) as e:
@@ -117,9 +117,20 @@ class Frame:
         if not (math.isfinite(self.scale) and self.scale > 0):
             raise DataError(f"{p}: scale must be positive")
 
-    def verify(self):
+    @classmethod
+    def from_bytes(cls, data, name="<memory>", verify=True):
+        """A frame from the bytes of its file (shadowlab.nsm_frame)."""
+        return cls(name, verify, bytes(data))
+
+    def _read(self, offset, n):
+        if self._data is not None:
+            return self._data[offset:offset + n]
         with open(self.path, "rb") as f:
-            data = f.read()
+            f.seek(offset)
+            return f.read(n)
+
+    def verify(self):
+        data = self._data if self._data is not None else self._read(0, self.size)
         stored = struct.unpack("<Q", data[-8:])[0]
         if fnv1a64(data[:-8]) != stored:
             raise DataError(f"{self.path}: FNV-1a 64 checksum mismatch (corrupt or truncated)")
@@ -128,6 +139,9 @@ class Frame:
     def _plane(self, offset, dtype):
         # Mapped on each access and released with the array: a data set of thousands of frames
         # holds no file descriptor open between samples (a mapping keeps one).
+        if self._data is not None:
+            return np.frombuffer(self._data, dtype=dtype, count=self.width * self.height,
+                                 offset=offset).reshape(self.height, self.width)
         return np.memmap(self.path, dtype=dtype, mode="r", offset=offset,
                          shape=(self.height, self.width))
 
