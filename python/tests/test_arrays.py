@@ -1,6 +1,7 @@
 """The module's arrays are the programs' files, bit for bit (read by an independent EXR
 reader), and its views are views."""
 import os
+import warnings
 
 import numpy as np
 
@@ -116,3 +117,49 @@ def test_nsm_features_follow_their_definitions(sl):
     assert np.all(f["d"][~cov] == 0)
     net = sl.nsm_features(scene, gbuffer=g)
     assert list(net) == ["z_over_zf", "z_minus_zf", "c_e_r", "d", "coverage"]
+
+
+def _write_gltf(path):
+    """A floor quad and a smaller quad above it, as glTF 2.0 with an embedded buffer."""
+    import base64
+    import json
+    import struct
+    pos = [(-2, 0, -2), (2, 0, -2), (2, 0, 2), (-2, 0, 2),
+           (-0.5, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (-0.5, 1, 0.5)]
+    idx = [0, 2, 1, 0, 3, 2, 4, 6, 5, 4, 7, 6]
+    data = b"".join(struct.pack("<3f", *p) for p in pos) + struct.pack(f"<{len(idx)}H", *idx)
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                       "min": [-2, 0, -2], "max": [2, 1, 2]},
+                      {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]}
+    path.write_text(json.dumps(doc))
+
+
+def test_scene_files_load_as_the_programs_load_them(sl, tmp_path):
+    gltf = tmp_path / "quads.gltf"
+    _write_gltf(gltf)
+    cases = [("assets/scenes/two_bunnies.json", {}, []),
+             ("assets/bunny/stanford-bunny.obj", {}, []),
+             (str(gltf), dict(light_pos=(0.3, 3.0, 0.2), eye=(3.0, 2.5, 3.0), target=(0.0, 0.0, 0.0)),
+              ["--light-pos", "0.3,3,0.2", "--eye", "3,2.5,3", "--target", "0,0,0"])]
+    for i, (name, kw, flags) in enumerate(cases):
+        out = tmp_path / str(i)
+        _, _, err = run("render", "--scene", name, "--technique", "cmsm:res=256", "--repeats",
+                        "1", "--out", str(out), *SMALL, *flags)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            scene = sl.scene(name, width=160, height=120, **kw)
+        # The program's notes (after its run) are the module's warnings, line for line.
+        notes = [l for l in err.splitlines() if l.startswith("note: ")]
+        assert [str(w.message) for w in caught] == notes, name
+        assert len(notes) == (2 if name.endswith(".gltf") else 0)
+        mask = sl.render(scene, "cmsm:res=256").mask
+        (expected,) = read_exr(str(out / "mask.exr")).values()
+        assert mask.tobytes() == expected.tobytes(), name
+        assert 0.01 < float((mask < 0.5).mean()) < 0.95, name   # a shadow in view
