@@ -64,6 +64,11 @@ nlohmann::json timing_json(const ShadowResult& r) {
     j["features_ms"] = ms(r.features_ms);
     j["network_ms"] = ms(r.network_ms);
   }
+  // A ray tracer's phases (rts: lookup_ms = rays_ms + denoise_ms); absent elsewhere.
+  if (r.rays_ms > 0.0) {
+    j["rays_ms"] = ms(r.rays_ms);
+    j["denoise_ms"] = ms(r.denoise_ms);
+  }
   const WorkCounts& w = r.work;
   j["work"] = {{"triangles_submitted", w.triangles_submitted},
                {"triangles_binned", w.triangles_binned},
@@ -78,6 +83,10 @@ nlohmann::json timing_json(const ShadowResult& r) {
   if (w.multiply_adds > 0) {
     j["work"]["multiply_adds"] = w.multiply_adds;
     j["work"]["activation_bytes"] = w.activation_bytes;
+  }
+  if (w.rays > 0) {
+    j["work"]["rays"] = w.rays;
+    j["work"]["filter_taps"] = w.filter_taps;
   }
   return j;
 }

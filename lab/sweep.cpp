@@ -53,9 +53,9 @@ SweepResult run_resolution_sweep(const Scene& scene, const SweepConfig& config) 
   for (const std::string& t : config.techniques) {
     TechniqueSpec s = parse_technique_spec(t, "--techniques");
     // The sweep's rows are light maps at each resolution; the ray tracer is its reference.
-    if (s.name == "rt")
-      throw InputError("--techniques", "rt has no map resolution: the sweep runs light-map techniques at each of "
-                                       "--resolutions against its ray-traced reference (--spp)");
+    if (s.name == "rt" || s.name == "rts")
+      throw InputError("--techniques", s.name + " has no map resolution: the sweep runs light-map techniques at each of "
+                                       "--resolutions against its ray-traced reference (--spp); tune searches rts");
     if (s.params.count("res")) throw InputError("--techniques", "'" + t + "': res is swept by --resolutions");
     specs.push_back(s);
     reject_repeated_specs("--techniques", specs, config.techniques);

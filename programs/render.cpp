@@ -72,6 +72,10 @@ int main(int argc, char** argv) {
                   "activations\n",
                   r.features_ms, r.network_ms, double(w.multiply_adds),
                   double(w.activation_bytes) * 1e-6);
+    if (w.rays > 0)
+      std::printf("rays: %llu cast in %.3f ms (%.1f M rays/s); denoiser %.3f ms, %llu filter taps\n",
+                  (unsigned long long)w.rays, r.rays_ms, double(w.rays) / (r.rays_ms * 1e3),
+                  r.denoise_ms, (unsigned long long)w.filter_taps);
     std::printf("wrote %s/mask.exr, mask.png%s, timing.json, shaded.exr, shaded.png\n", out.c_str(),
                 r.texels.empty() ? "" : ", texel.exr");
     return 0;

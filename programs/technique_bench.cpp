@@ -48,8 +48,8 @@ int main(int argc, char** argv) {
     const std::vector<std::string> texts = spec_list_items(techniques, "--techniques");
     for (const std::string& t : texts) {
       TechniqueSpec s = parse_technique_spec(t, "--techniques");
-      if (s.name == "rt")
-        throw InputError("--techniques", "rt has no map resolution: technique_bench times light-map techniques at --res");
+      if (s.name == "rt" || s.name == "rts")
+        throw InputError("--techniques", s.name + " has no map resolution: technique_bench times light-map techniques at --res");
       // The targets compare every spec at one resolution: a spec's own res would be overridden.
       if (s.params.count("res"))
         throw InputError("--techniques", "'" + t + "': give the resolution with --res");

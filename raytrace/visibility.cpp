@@ -88,6 +88,13 @@ struct ShadowStream {
 
 // Fills the mask for every pixel that needs no ray (uncovered: 1, facing away: 0) and returns
 // true for the pixels that need shadow rays.
+// The rays of every tile, summed in tile order (the same total for any thread count).
+uint64_t sum_tile_rays(const std::vector<uint32_t>& tile_rays) {
+  uint64_t total = 0;
+  for (uint32_t r : tile_rays) total += r;
+  return total;
+}
+
 bool needs_rays(const GBuffer& g, size_t p, vec3 light, ImageF& mask) {
   if (!g.covered[p]) {
     mask.data[p] = 1.0f;
@@ -169,13 +176,15 @@ float shadow_ray_offset(float scene_scale, vec3 p) {
   return 1e-4f * scene_scale + 1e-6f * mag;
 }
 
-ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer) {
+ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer,
+                       uint64_t* rays) {
   check_gbuffer(gbuffer);
   ImageF mask(gbuffer.width, gbuffer.height, 1, 1.0f);
   const TileGrid grid(gbuffer.width, gbuffer.height);
   const vec3 light = scene.light.position;
   const float scale = rt.scene_scale();
   auto* rtc_scene = static_cast<RTCScene>(rt.native_scene());
+  std::vector<uint32_t> tile_rays(grid.count(), 0);
 
   parallel_for(0, grid.count(), [&](size_t t) {
     int visible[kPixelTile * kPixelTile] = {};
@@ -206,15 +215,17 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
                        size_t(grid.x0(t) + local % kPixelTile);
       mask.data[p] = visible[local] > 0 ? 1.0f : 0.0f;
     }
+    tile_rays[t] = uint32_t(traced);
   });
   rt.throw_if_error("tracing hard shadow rays");
+  if (rays) *rays = sum_tile_rays(tile_rays);
   return mask;
 }
 
 size_t visibility_work_units(int width, int height) { return TileGrid(width, height).count(); }
 
 ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer, int spp,
-                       uint64_t seed, ProgressLine* progress) {
+                       uint64_t seed, ProgressLine* progress, uint64_t* rays) {
   if (spp < 1) throw InputError("spp", "samples per pixel must be >= 1, got " + std::to_string(spp));
   const double radius = double(scene.light.radius);
   if (radius <= 0.0) return hard_visibility(rt, scene, gbuffer);
@@ -227,8 +238,10 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
   const float scale = rt.scene_scale();
   auto* rtc_scene = static_cast<RTCScene>(rt.native_scene());
   constexpr float kTwoPi = 6.28318530717958647692f;
+  std::vector<uint32_t> tile_rays(grid.count(), 0);
 
   parallel_for(0, grid.count(), [&](size_t t) {
+    uint32_t cast = 0;
     int visible[kPixelTile * kPixelTile] = {};
     bool traced[kPixelTile * kPixelTile] = {};
     ShadowStream stream(rtc_scene, visible);
@@ -283,6 +296,7 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
               continue;
             }
             stream.add(make_ray(org, dir, 0.0f, tfar), local);
+            ++cast;
           }
       }
     stream.flush();
@@ -292,9 +306,11 @@ ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
                        size_t(grid.x0(t) + local % kPixelTile);
       mask.data[p] = float(visible[local]) / float(spp);
     }
+    tile_rays[t] = cast;
     if (progress) progress->advance();
   });
   rt.throw_if_error("tracing soft shadow rays");
+  if (rays) *rays = sum_tile_rays(tile_rays);
   return mask;
 }
 

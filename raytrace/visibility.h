@@ -33,8 +33,10 @@ namespace shadowlab {
 float shadow_ray_offset(float scene_scale, vec3 p);
 
 // Hard shadows from the point light at scene.light.position (its radius is ignored): one ray
-// per covered, light-facing pixel; 1 if unoccluded, 0 if occluded.
-ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer);
+// per covered, light-facing pixel; 1 if unoccluded, 0 if occluded. `rays`, when given, receives
+// the rays cast.
+ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer,
+                       uint64_t* rays = nullptr);
 
 // Soft shadows from the sphere light (centre scene.light.position, radius scene.light.radius).
 // Per covered, light-facing pixel: the fraction of `spp` shadow rays that reach the sphere.
@@ -52,9 +54,11 @@ ImageF hard_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer&
 //  - O inside the sphere (|C − O| <= radius): fully lit (1), since the pixel faces the centre.
 //  - radius == 0: identical to hard_visibility (spp and seed are unused).
 // Throws InputError for spp < 1.
-// `progress`, when given, advances by one unit per finished tile.
+// `progress`, when given, advances by one unit per finished tile; `rays`, when given, receives
+// the rays cast (samples decided without a ray, below the tangent plane or where the light
+// touches the surface, are not rays).
 ImageF soft_visibility(const EmbreeScene& rt, const Scene& scene, const GBuffer& gbuffer, int spp,
-                       uint64_t seed, ProgressLine* progress = nullptr);
+                       uint64_t seed, ProgressLine* progress = nullptr, uint64_t* rays = nullptr);
 // Number of units soft_visibility advances a ProgressLine by for a width × height GBuffer.
 size_t visibility_work_units(int width, int height);
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "techniques/nsm/nsm_features.h"
 #include "techniques/nsm/nsm_network.h"
 #include "techniques/pipeline/light_faces.h"
 #include "techniques/registry/technique.h"

@@ -83,6 +83,10 @@ std::string technique_keys_markdown() {
       "the other layouts change.\n\n"
       "## rt\n\n" + technique_what("rt", "--list-keys") + ".\n\n" +
       key_table(technique_keys("rt", "--list-keys")) +
+      "\n## rts\n\n" + technique_what("rts", "--list-keys") +
+      " (docs/techniques/rts.md): the reference's rays at a few samples per pixel, then a "
+      "denoiser guided by the GBuffer.\n\n" +
+      key_table(technique_keys("rts", "--list-keys")) +
       "\n## nsm\n\n" + technique_what("nsm", "--list-keys") +
       " (docs/techniques/nsm.md). The base map is the cube layout's, fp32, nearest texel, no "
       "bias: the network learns its own.\n\n" +

@@ -13,6 +13,7 @@
 #include "techniques/nsm/nsm_features.h"
 #include "techniques/nsm/nsm_technique.h"
 #include "techniques/rt/ray_traced.h"
+#include "techniques/rt/rt_denoised.h"
 
 namespace shadowlab {
 namespace {
@@ -65,6 +66,15 @@ std::vector<Entry> make_registry() {
                   [](const TechniqueSpec& s, const char* flag) { parse_ray_traced(s, flag); },
                   run_ray_traced, false,
                   [](const TechniqueSpec&, const Scene&, const char*) { return uint64_t(0); },
+                  [](const TechniqueSpec&, const Scene&, const char*) {}});
+  rows.push_back({"rts", "Embree ray tracing at a few samples per pixel, denoised",
+                  key_infos(rt_denoised_keys()),
+                  [](const TechniqueSpec& s, const char* flag) { parse_rt_denoised(s, flag); },
+                  run_rt_denoised, false,
+                  [](const TechniqueSpec&, const Scene& scene, const char*) {
+                    // The noisy mask, the filter's two images and its guide (7 planes).
+                    return uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * 40u;
+                  },
                   [](const TechniqueSpec&, const Scene&, const char*) {}});
   rows.push_back({"nsm", "Neural Shadow Mapping: a UNet on one plain cube map's features",
                   key_infos(nsm_keys()),

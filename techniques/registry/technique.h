@@ -27,6 +27,8 @@ struct WorkCounts {
   uint64_t bytes_read = 0;           // map storage read by the lookups: taps × bytes per tap
   uint64_t multiply_adds = 0;        // a network's multiply-adds (nsm; 0 elsewhere)
   uint64_t activation_bytes = 0;     // a network's activations that reach memory, 4 B a value
+  uint64_t rays = 0;                 // shadow rays cast (rts; 0 elsewhere)
+  uint64_t filter_taps = 0;          // a denoiser's taps (rts; 0 elsewhere)
   double taps_per_pixel() const {
     return pixels_looked_up ? double(taps) / double(pixels_looked_up) : 0.0;
   }
@@ -47,6 +49,8 @@ struct ShadowResult {
   double lookup_ms = 0.0;     // per-pixel lookup / ray pass (nsm: features + network)
   double features_ms = 0.0;   // nsm: the network's input planes (0 elsewhere)
   double network_ms = 0.0;    // nsm: the network's forward pass (0 elsewhere)
+  double rays_ms = 0.0;       // rts: the shadow rays (0 elsewhere)
+  double denoise_ms = 0.0;    // rts: the denoiser (0 elsewhere); lookup_ms = rays + denoise
   WorkCounts work;
   int faces_total = 0;        // faces of the layout (6 for a cube map)
   int faces_needed = 0;       // faces some pixel's lookup touches

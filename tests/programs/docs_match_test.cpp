@@ -64,7 +64,7 @@ std::set<std::string> backticked(const std::string& text) {
 // letter + a filter suffix, and every pair is registered.
 void registry_layouts_filters(std::set<std::string>& layouts, std::set<std::string>& filters) {
   for (const auto& [name, description] : technique_list()) {
-    if (name == "rt" || name == "nsm") continue;  // outside the layout × filter grid
+    if (name == "rt" || name == "rts" || name == "nsm") continue;  // outside the layout × filter grid
     layouts.insert(name.substr(0, 1));
     filters.insert(name.substr(1));
   }

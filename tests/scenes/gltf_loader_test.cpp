@@ -368,7 +368,9 @@ TEST(Gltf, EveryTechniqueRendersAndTheCameraPassAgreesWithEmbree) {
   size_t runs = 0;
   for (const auto& [name, what] : technique_list()) {
     if (name[0] == 'p') continue;  // the projector layout needs a spot light (light 1)
-    const std::string spec = name == "rt" ? "rt:spp=4" : name + ":res=64";
+    const std::string spec = name == "rt"    ? "rt:spp=4"
+                             : name == "rts" ? "rts:spp=2,denoise=atrous"
+                                             : name + ":res=64";
     RunOptions opt;
     const ShadowResult r = run_technique(parse_technique_spec(spec, "test"), s, g, opt);
     ASSERT_EQ(r.mask.data.size(), g.pixel_count()) << spec;

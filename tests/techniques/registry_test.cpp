@@ -34,7 +34,9 @@ TEST(Registry, EveryTechniqueIsFiniteInUnitRangeAndThreadCountIndependent) {
     for (const auto& [name, what] : list) {
       // The projector layout needs the projector; spp kept small for the ray tracer.
       if (name[0] == 'p' && !scene.projector.enabled) continue;
-      const std::string spec = name == "rt" ? "rt:spp=4" : name + ":res=64";
+      const std::string spec = name == "rt"    ? "rt:spp=4"
+                               : name == "rts" ? "rts:spp=2,denoise=atrous"
+                                               : name + ":res=64";
       std::vector<ShadowResult> results;
       for (int threads : {1, 2, 7}) {
         set_thread_count(threads);

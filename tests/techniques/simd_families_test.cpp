@@ -18,6 +18,7 @@
 #include "techniques/lookup/map_lookup_simd.h"
 #include "techniques/filters/moments_common/moment_rows.h"
 #include "techniques/nsm/nsm_conv.h"
+#include "techniques/rt/atrous.h"
 
 namespace shadowlab {
 namespace {
@@ -31,11 +32,12 @@ TEST(SimdFamilies, EachFamilyRunsTheProcessesInstructionSet) {
   const Isa esm_tiles = esm_tile_kernels(isa).isa;
   const Isa batches = lookup_batch_kernels(isa).isa;
   const Isa nsm_conv = nsm_conv_kernels(isa).isa;
+  const Isa atrous = atrous_kernels(isa).isa;
   std::printf(
       "process %s: centred_window3 %s, face_rows %s, lookup %s, moment_rows %s, esm_tiles %s, "
-      "lookup_batches %s, nsm_conv %s\n",
+      "lookup_batches %s, nsm_conv %s, atrous %s\n",
       isa_name(isa), isa_name(window), isa_name(rows), isa_name(lookup), isa_name(moments),
-      isa_name(esm_tiles), isa_name(batches), isa_name(nsm_conv));
+      isa_name(esm_tiles), isa_name(batches), isa_name(nsm_conv), isa_name(atrous));
   // The window, face row and moment row families have a table per set; the lookup's widest is
   // AVX2.
   EXPECT_EQ(window, isa);
@@ -44,6 +46,7 @@ TEST(SimdFamilies, EachFamilyRunsTheProcessesInstructionSet) {
   EXPECT_EQ(esm_tiles, isa);
   EXPECT_EQ(batches, isa);
   EXPECT_EQ(nsm_conv, isa);
+  EXPECT_EQ(atrous, isa);
   EXPECT_EQ(nsm_conv_kernels(Isa::scalar).isa, Isa::scalar);
   EXPECT_EQ(lookup, std::min(isa, Isa::avx2));
   // The scalar tables: the window's row, the lookup's merge and no batch kernels.

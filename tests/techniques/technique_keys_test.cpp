@@ -15,6 +15,7 @@
 #include "techniques/pipeline/map_params.h"
 #include "techniques/nsm/nsm_technique.h"
 #include "techniques/rt/ray_traced.h"
+#include "techniques/rt/rt_denoised.h"
 #include "techniques/registry/technique.h"
 
 namespace shadowlab {
@@ -40,6 +41,14 @@ std::string params_text(const std::string& name, const std::string& spec_text) {
   if (name == "rt") {
     const RayTracedParams p = parse_ray_traced(spec, "t");
     return std::to_string(p.spp) + " " + std::to_string(p.hard) + " " + std::to_string(p.seed);
+  }
+  if (name == "rts") {
+    const RtDenoisedParams p = parse_rt_denoised(spec, "t");
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%d %d %d %.9g %d %.9g %d %d", p.spp, int(p.denoise),
+                  p.atrous.iterations, double(p.atrous.sigma_z), p.atrous.normal_power,
+                  double(p.atrous.sigma_v), int(p.hard), p.seed);
+    return buf;
   }
   if (name == "nsm") {
     const NsmParams p = parse_nsm(spec, "t");
