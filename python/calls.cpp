@@ -200,6 +200,7 @@ Fields result_times(const PyResult& r) {
                       {"filter_ms", x.filter_ms}, {"map_ms", x.map_ms},
                       {"lookup_ms", x.lookup_ms}, {"shadow_ms", x.shadow_ms()},
                       {"features_ms", x.features_ms}, {"network_ms", x.network_ms},
+                      {"rays_ms", x.rays_ms}, {"denoise_ms", x.denoise_ms},
                       {"camera_ms", r.camera_ms}})
     f.push_back(number(k, v));
   return f;
@@ -215,7 +216,8 @@ Fields result_work(const PyResult& r) {
                       {"pixels_looked_up", w.pixels_looked_up}, {"taps", w.taps},
                       {"bytes_written", w.bytes_written}, {"bytes_read", w.bytes_read},
                       {"multiply_adds", w.multiply_adds},
-                      {"activation_bytes", w.activation_bytes}})
+                      {"activation_bytes", w.activation_bytes}, {"rays", w.rays},
+                      {"filter_taps", w.filter_taps}})
     f.push_back(integer(k, int64_t(v)));
   f.push_back(number("taps_per_pixel", w.taps_per_pixel()));
   return f;

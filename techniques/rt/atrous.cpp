@@ -43,9 +43,12 @@ void atrous_row_scalar(const AtrousRow& r) {
     const size_t p = size_t(y) * size_t(w) + size_t(x);
     if (gd.f[p] == 0.0f) {
       r.out[p] = r.in[p];
+      r.var_out[p] = r.var_in[p];
       continue;
     }
-    float sum = 0.0f, wsum = 0.0f;
+    const float vden = r.sigma_v * std::sqrt(r.var_in[p]) + kAtrousValueEps;
+    const float vinv = r.sigma_v > 0.0f ? 1.0f / vden : 0.0f;
+    float sum = 0.0f, wsum = 0.0f, vsum = 0.0f;
     for (int j = 0; j < 5; ++j) {
       const int qy = y + (j - 2) * s;
       if (qy < 0 || qy >= h) continue;
@@ -54,8 +57,8 @@ void atrous_row_scalar(const AtrousRow& r) {
         if (qx < 0 || qx >= w) continue;
         const size_t q = size_t(qy) * size_t(w) + size_t(qx);
         const float dz = std::fabs(gd.z[p] - gd.z[q]);
-        const float dv = r.in[p] - r.in[q];
-        const float arg = -(dz / (gd.g[p] * r.tap_c[j * 5 + i] + kAtrousDepthEps) + (dv * dv) * r.value_k);
+        const float dv = std::fabs(r.in[p] - r.in[q]);
+        const float arg = -(dz / (gd.g[p] * r.tap_c[j * 5 + i] + kAtrousDepthEps) + dv * vinv);
         const float e = exp_f(std::max(arg, kAtrousMinExponent));
         const float d = (gd.nx[p] * gd.nx[q] + gd.ny[p] * gd.ny[q]) + gd.nz[p] * gd.nz[q];
         float wn = d > 0.0f ? d : 0.0f;
@@ -63,9 +66,11 @@ void atrous_row_scalar(const AtrousRow& r) {
         const float wt = ((hw[j * 5 + i] * e) * wn) * gd.f[q];
         sum = sum + wt * r.in[q];
         wsum = wsum + wt;
+        vsum = vsum + (wt * wt) * r.var_in[q];
       }
     }
     r.out[p] = sum / wsum;
+    r.var_out[p] = vsum / (wsum * wsum);
   }
 }
 
@@ -128,11 +133,30 @@ ImageF atrous_denoise(const ImageF& noisy, const AtrousGuide& guide, const Atrou
                       const AtrousKernels& kernels, uint64_t* taps) {
   SL_CHECK(noisy.width == guide.width && noisy.height == guide.height && noisy.channels == 1);
   SL_CHECK(p.iterations >= 0 && p.iterations <= 10 && p.normal_power >= 0 && p.normal_power <= 10);
+  SL_CHECK(p.samples >= 1);
   ImageF a = noisy, b(noisy.width, noisy.height);
+  // The input's variance: binomial, m(1 − m)/n, m the mean of the 3 × 3 filtered neighbourhood.
+  const int w = noisy.width, h = noisy.height;
+  std::vector<float> va(noisy.data.size(), 0.0f), vb(noisy.data.size(), 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t c = size_t(y) * size_t(w) + size_t(x);
+      if (guide.f[c] == 0.0f) continue;
+      float sum = 0.0f, count = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          const size_t q = size_t(qy) * size_t(w) + size_t(qx);
+          if (guide.f[q] == 0.0f) continue;
+          sum += noisy.data[q];
+          count += 1.0f;
+        }
+      const float m = sum / count;
+      va[c] = m * (1.0f - m) / float(p.samples);
+    }
   for (int it = 0; it < p.iterations; ++it) {
     const int step = 1 << it;
-    const float sv = p.sigma_v / float(step);
-    const float value_k = p.sigma_v > 0.0f ? 1.0f / (sv * sv) : 0.0f;
     float tap_c[25];
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i)
@@ -150,11 +174,14 @@ ImageF atrous_denoise(const ImageF& noisy, const AtrousGuide& guide, const Atrou
         r.step = step;
         r.tap_c = tap_c;
         r.normal_power = p.normal_power;
-        r.value_k = value_k;
+        r.sigma_v = p.sigma_v;
+        r.var_in = va.data();
+        r.var_out = vb.data();
         kernels.row(r);
       }
     });
     std::swap(a, b);
+    std::swap(va, vb);
   }
   if (taps) {
     uint64_t filtered = 0;

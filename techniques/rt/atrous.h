@@ -7,9 +7,12 @@
 //           gradient (metres per pixel) and |o| the tap's offset in pixels (the SVGF form: a
 //           plane seen at a grazing angle keeps its neighbours, a depth step does not);
 //   normal  max(0, n_p · n_q)^(2^k), the geometric normals (k = 7: the power 128 of SVGF);
-//   value   exp(−(v_p − v_q)² / σ_v,i²), v the previous iteration's values and σ_v,i = σ_v·2^−i
-//           (Dammertz's colour term, halved per iteration): a shadow's edge on a plane, which
-//           the GBuffer cannot see, stops the filter where the values differ by more than noise;
+//   value   exp(−|v_p − v_q| / (σ_v · √var_p + ε)), v the previous iteration's values and var_p
+//           their variance (SVGF's variance-guided term): a shadow's edge on a plane, which the
+//           GBuffer cannot see, stops the filter where the values differ by more than their
+//           noise. The input's variance is the binomial one of an n-sample estimate,
+//           m(1 − m)/n, m the mean of the 3 × 3 filtered neighbourhood; each iteration carries
+//           it on as Σ w²·var_q / (Σ w)², the variance of its weighted mean;
 // and the weights renormalized. Only covered pixels facing the light are filtered, and only they
 // are taps: the facing-away pixels are 0 by the mask convention and the uncovered 1, neither
 // noise, so neither bleeds into its neighbours.
@@ -31,12 +34,16 @@ namespace shadowlab {
 constexpr float kAtrousDepthEps = 1e-4f;
 // exp_f's domain ends at −87 (core/exp_log.h); e^−87 ≈ 1.6e-38 is a weight of 0 in effect.
 constexpr float kAtrousMinExponent = -87.0f;
+// ε of the value term's denominator: where the variance is 0 (a neighbourhood all lit or all
+// dark), any difference stops the filter.
+constexpr float kAtrousValueEps = 1e-4f;
 
 struct AtrousParams {
   int iterations = 4;     // N: taps up to 2·2^(N−1) pixels away (61 × 61 for N = 4)
   float sigma_z = 1.0f;   // depth term's scale
   int normal_power = 7;   // k: the normal term's power is 2^k
-  float sigma_v = 0.5f;   // value term's scale at the first iteration; 0: no value term
+  float sigma_v = 1.0f;   // value term's scale, in standard deviations; 0: no value term
+  int samples = 1;        // samples per pixel of the input (its variance m(1 − m)/samples)
 };
 
 // The GBuffer as the rows read it: planes of W × H floats, zero where f is 0.
@@ -57,7 +64,9 @@ struct AtrousRow {
   int step = 1;             // 2^i
   const float* tap_c = nullptr;  // 25 (row-major dy, dx): σ_z · step · |(dx, dy)|
   int normal_power = 7;
-  float value_k = 0.0f;     // 1 / σ_v,i² (0: no value term)
+  float sigma_v = 0.0f;     // the value term's σ_v (0: no value term)
+  const float* var_in = nullptr;  // the values' variance
+  float* var_out = nullptr;
 };
 using AtrousRowKernel = void (*)(const AtrousRow& row);
 

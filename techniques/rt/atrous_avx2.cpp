@@ -40,6 +40,7 @@ constexpr int kL = 8;
 [[gnu::always_inline]] inline V vsub(V a, V b) { return _mm256_sub_ps(a, b); }
 [[gnu::always_inline]] inline V vmul(V a, V b) { return _mm256_mul_ps(a, b); }
 [[gnu::always_inline]] inline V vdiv(V a, V b) { return _mm256_div_ps(a, b); }
+[[gnu::always_inline]] inline V vsqrt(V a) { return _mm256_sqrt_ps(a); }
 [[gnu::always_inline]] inline V vabs(V a) {
   return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a);
 }

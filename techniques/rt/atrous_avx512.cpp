@@ -40,6 +40,7 @@ constexpr int kL = 16;
 [[gnu::always_inline]] inline V vsub(V a, V b) { return _mm512_sub_ps(a, b); }
 [[gnu::always_inline]] inline V vmul(V a, V b) { return _mm512_mul_ps(a, b); }
 [[gnu::always_inline]] inline V vdiv(V a, V b) { return _mm512_div_ps(a, b); }
+[[gnu::always_inline]] inline V vsqrt(V a) { return _mm512_sqrt_ps(a); }
 [[gnu::always_inline]] inline V vabs(V a) { return _mm512_abs_ps(a); }
 [[gnu::always_inline]] inline V vneg(V a) {
   return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a), _mm512_set1_epi32(int(0x80000000u))));

@@ -17,7 +17,10 @@ void row(const AtrousRow& r) {
     const V nyp = vmaskload(gd.ny.data() + p, x0, w);
     const V nzp = vmaskload(gd.nz.data() + p, x0, w);
     const V in_p = vmaskload(r.in + p, x0, w);
-    V sum = vset1(0.0f), wsum = vset1(0.0f);
+    const V var_p = vmaskload(r.var_in + p, x0, w);
+    const V vden = vadd(vmul(vset1(r.sigma_v), vsqrt(var_p)), vset1(kAtrousValueEps));
+    const V vinv = r.sigma_v > 0.0f ? vdiv(vset1(1.0f), vden) : vset1(0.0f);
+    V sum = vset1(0.0f), wsum = vset1(0.0f), vsum = vset1(0.0f);
     for (int j = 0; j < 5; ++j) {
       const int qy = y + (j - 2) * s;
       if (qy < 0 || qy >= h) continue;
@@ -27,9 +30,9 @@ void row(const AtrousRow& r) {
         const V fq = vmaskload_at(gd.f.data() + q, qx0, w);
         const V zq = vmaskload_at(gd.z.data() + q, qx0, w);
         const V dz = vabs(vsub(zp, zq));
-        const V dv = vsub(in_p, vmaskload_at(r.in + q, qx0, w));
+        const V dv = vabs(vsub(in_p, vmaskload_at(r.in + q, qx0, w)));
         const V arg = vneg(vadd(vdiv(dz, vadd(vmul(gp, vset1(r.tap_c[j * 5 + i])), vset1(kAtrousDepthEps))),
-                                vmul(vmul(dv, dv), vset1(r.value_k))));
+                                vmul(dv, vinv)));
         const V e = vexp(vmax(arg, vset1(kAtrousMinExponent)));
         const V d = vadd(vadd(vmul(nxp, vmaskload_at(gd.nx.data() + q, qx0, w)),
                               vmul(nyp, vmaskload_at(gd.ny.data() + q, qx0, w))),
@@ -39,8 +42,10 @@ void row(const AtrousRow& r) {
         const V wt = vmul(vmul(vmul(vset1(hw[j * 5 + i]), e), wn), fq);
         sum = vadd(sum, vmul(wt, vmaskload_at(r.in + q, qx0, w)));
         wsum = vadd(wsum, wt);
+        vsum = vadd(vsum, vmul(vmul(wt, wt), vmaskload_at(r.var_in + q, qx0, w)));
       }
     }
+    vmaskstore(r.var_out + p, x0, w, vselect_nonzero(fp, vdiv(vsum, vmul(wsum, wsum)), var_p));
     vmaskstore(r.out + p, x0, w, vselect_nonzero(fp, vdiv(sum, wsum), in_p));
   }
 }

@@ -29,8 +29,8 @@ const std::vector<KeyDecl<RtDenoisedParams>>& rt_denoised_keys() {
        .help = "depth edge-stopping scale, in depth gradients per pixel of offset",
        .needs = "denoise=atrous",
        .store = [](RtDenoisedParams& p, const KeyValue& v) { p.atrous.sigma_z = float(v.number); }},
-      {.name = "sigma_v", .type = KeyType::Number, .def = 0.5, .lo = 0.0, .hi = 10.0,
-       .help = "value edge-stopping scale at the first iteration, halved at each (0: none)",
+      {.name = "sigma_v", .type = KeyType::Number, .def = 1.0, .lo = 0.0, .hi = 100.0,
+       .help = "value edge-stopping scale in standard deviations of the values' noise (0: none)",
        .needs = "denoise=atrous",
        .store = [](RtDenoisedParams& p, const KeyValue& v) { p.atrous.sigma_v = float(v.number); }},
       {.name = "normal_power", .type = KeyType::Integer, .def = 7, .lo = 0, .hi = 10,
@@ -67,6 +67,8 @@ ShadowResult run_rt_denoised(const TechniqueSpec& spec, const Scene& scene, cons
   const AtrousGuide guide =
       p.denoise == Denoiser::atrous ? atrous_guide(gbuffer, scene.light.position) : AtrousGuide{};
   const AtrousKernels& kernels = atrous_kernels(process_isa());
+  AtrousParams ap = p.atrous;
+  ap.samples = hard ? 1 : p.spp;
   std::vector<double> rays_t, denoise_t, lookup_t;
   uint64_t rays = 0, taps = 0;
   for (int rep = 0; rep < std::max(1, options.repeats); ++rep) {
@@ -75,7 +77,7 @@ ShadowResult run_rt_denoised(const TechniqueSpec& spec, const Scene& scene, cons
                         : soft_visibility(rt, scene, gbuffer, p.spp, seed, nullptr, &rays);
     rays_t.push_back(ms_since(t0));
     t0 = std::chrono::steady_clock::now();
-    res.mask = p.denoise == Denoiser::atrous ? atrous_denoise(noisy, guide, p.atrous, kernels, &taps)
+    res.mask = p.denoise == Denoiser::atrous ? atrous_denoise(noisy, guide, ap, kernels, &taps)
                                              : std::move(noisy);
     denoise_t.push_back(ms_since(t0));
     lookup_t.push_back(rays_t.back() + denoise_t.back());
