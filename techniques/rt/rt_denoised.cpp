@@ -18,7 +18,7 @@ const std::vector<KeyDecl<RtDenoisedParams>>& rt_denoised_keys() {
        .help = "shadow rays per pixel on the sphere light (stratified per pixel, as the reference's)",
        .store = [](RtDenoisedParams& p, const KeyValue& v) { p.spp = int(v.number); }},
       {.name = "denoise", .type = KeyType::Choice, .def_word = "none", .choices = "none|atrous",
-       .help = "none: the raw estimate; atrous: edge-avoiding a-trous guided by depth and normal",
+       .help = "none: the raw estimate; atrous: edge-avoiding a-trous guided by depth, normal and the values' variance",
        .store = [](RtDenoisedParams& p, const KeyValue& v) {
          p.denoise = v.word == "none" ? Denoiser::none : Denoiser::atrous;
        }},

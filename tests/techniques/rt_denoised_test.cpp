@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <random>
 #include <vector>
 
@@ -11,6 +14,7 @@
 #include "core/rng.h"
 #include "techniques/rt/atrous.h"
 #include "techniques/rt/rt_denoised.h"
+#include "test_paths.h"
 #include "test_scenes.h"
 
 namespace shadowlab {
@@ -208,6 +212,11 @@ TEST(RtDenoised, RaysAndTapsAreCounted) {
   EXPECT_GT(soft.work.rays, 5u * soft.work.pixels_looked_up);
   EXPECT_EQ(soft.work.filter_taps, 25u * 3u * soft.work.pixels_looked_up);
   EXPECT_DOUBLE_EQ(soft.lookup_ms, soft.rays_ms + soft.denoise_ms);
+  // The notes give the rate of the rays' own time (a small image: well under 1 ms).
+  char rate[64];
+  std::snprintf(rate, sizeof rate, "%.1f M rays/s", double(soft.work.rays) / (soft.rays_ms * 1e3));
+  EXPECT_NE(soft.notes.find(rate), std::string::npos) << soft.notes << " / " << rate;
+  EXPECT_EQ(soft.notes.find(" 0.0 M rays/s"), std::string::npos) << soft.notes;
   EXPECT_EQ(soft.map_ms, 0.0);
 }
 
@@ -249,4 +258,147 @@ TEST(RtDenoised, DenoisingLowersTheErrorOfASoftShadow) {
 }
 
 }  // namespace rt_denoised_test
+
+namespace rt_denoised_definition_test {
+
+using rt_denoised_test::scalar_rows;
+
+// A W × H guide of one plane tilted in x (z = 2 + a·x, the gradient a set directly), normals
+// (0, 0, 1): every term of the filter has a value known from its definition.
+AtrousGuide tilted_plane(int w, int h, float a) {
+  AtrousGuide g;
+  g.width = w;
+  g.height = h;
+  const size_t n = size_t(w) * size_t(h);
+  for (auto* v : {&g.z, &g.g, &g.nx, &g.ny, &g.nz, &g.f}) v->assign(n, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = size_t(y) * size_t(w) + size_t(x);
+      g.z[p] = 2.0f + a * float(x);
+      g.g[p] = a;
+      g.nz[p] = 1.0f;
+      g.f[p] = 1.0f;
+    }
+  return g;
+}
+
+TEST(Atrous, TwoPassesFollowTheDocumentedWeightsAndVariance) {
+  // The filter of techniques/rt/atrous.h evaluated here in double from its documented terms: the
+  // binomial variance m(1 − m)/n of the 3 × 3 mean, the depth term with the tap's offset length,
+  // the value term, and the variance carried as Σ w²·var / (Σ w)².
+  const int w = 23, h = 17, n = 4;
+  const float a = 0.05f;
+  const AtrousGuide guide = tilted_plane(w, h, a);
+  ImageF noisy(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) noisy.at(x, y) = float(mix64(uint64_t(y * 131 + x)) % 5u) / 4.0f;
+  AtrousParams p;
+  p.iterations = 2;
+  p.sigma_z = 0.7f;
+  p.sigma_v = 1.5f;
+  p.samples = n;
+  const ImageF got = atrous_denoise(noisy, guide, p, scalar_rows());
+
+  auto at = [&](int x, int y) { return size_t(y) * size_t(w) + size_t(x); };
+  std::vector<double> v(noisy.data.begin(), noisy.data.end()), var(v.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0, c = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (x + dx >= 0 && y + dy >= 0 && x + dx < w && y + dy < h) s += v[at(x + dx, y + dy)], c += 1;
+      const double m = s / c;
+      var[at(x, y)] = m * (1 - m) / n;
+    }
+  const double k[5] = {1 / 16.0, 1 / 4.0, 3 / 8.0, 1 / 4.0, 1 / 16.0};
+  for (int it = 0; it < p.iterations; ++it) {
+    const int step = 1 << it;
+    std::vector<double> v2(v.size()), var2(v.size());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        double sum = 0, ws = 0, vs = 0;
+        for (int j = -2; j <= 2; ++j)
+          for (int i = -2; i <= 2; ++i) {
+            const int qx = x + i * step, qy = y + j * step;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const double dz = std::fabs(double(guide.z[at(x, y)]) - double(guide.z[at(qx, qy)]));
+            const double off = step * std::sqrt(double(i * i + j * j));
+            const double depth = dz / (double(a) * double(p.sigma_z) * off + 1e-4);
+            const double value = std::fabs(v[at(x, y)] - v[at(qx, qy)]) /
+                                 (double(p.sigma_v) * std::sqrt(var[at(x, y)]) + 1e-4);
+            const double wt = k[i + 2] * k[j + 2] * std::exp(-(depth + value));
+            sum += wt * v[at(qx, qy)];
+            ws += wt;
+            vs += wt * wt * var[at(qx, qy)];
+          }
+        v2[at(x, y)] = sum / ws;
+        var2[at(x, y)] = vs / (ws * ws);
+      }
+    v.swap(v2);
+    var.swap(var2);
+  }
+  double worst = 0, moved = 0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    worst = std::max(worst, std::fabs(v[i] - double(got.data[i])));
+    moved = std::max(moved, std::fabs(v[i] - double(noisy.data[i])));
+  }
+  EXPECT_LT(worst, 2e-6);
+  EXPECT_GT(moved, 0.1);  // the filter changes the values: the comparison is not of two no-ops
+}
+
+TEST(Atrous, TheGuidesGradientIsTheCentralDifferenceOrOneSidedAtAHole) {
+  // z = 2 + 0.01·x² on a plane facing the camera and the light: the central difference at
+  // column x is 0.02·x, the one-sided one at column 0 is 0.01, and next to an unfiltered pixel
+  // (a hole in row 0 only) the other side's difference.
+  const int w = 12, h = 6;
+  GBuffer g;
+  g.resize(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = size_t(y) * w + x;
+      const bool hole = y == 0 && x == 5;
+      g.covered[p] = hole ? 0 : 1;
+      g.depth[p] = 2.0f + 0.01f * float(x * x);
+      g.position[p] = vec3(float(x), float(y), 0.0f);
+      g.geo_normal[p] = vec3(0.0f, 0.0f, 1.0f);
+    }
+  const AtrousGuide guide = atrous_guide(g, vec3(5.0f, 3.0f, 10.0f));
+  auto z = [](int x) { return 2.0f + 0.01f * float(x * x); };
+  for (int y = 1; y < h; ++y) {
+    EXPECT_FLOAT_EQ(guide.g[size_t(y) * w + 0], z(1) - z(0)) << y;
+    EXPECT_FLOAT_EQ(guide.g[size_t(y) * w + 1], (z(2) - z(0)) / 2) << y;
+    EXPECT_FLOAT_EQ(guide.g[size_t(y) * w + 6], (z(7) - z(5)) / 2) << y;
+    EXPECT_FLOAT_EQ(guide.g[size_t(y) * w + w - 1], z(w - 1) - z(w - 2)) << y;
+  }
+  EXPECT_FLOAT_EQ(guide.g[6], z(7) - z(6));  // row 0, right of the hole: one-sided
+  EXPECT_FLOAT_EQ(guide.g[4], z(4) - z(3));  // left of it
+  EXPECT_EQ(guide.f[5], 0.0f);
+}
+
+TEST(AtrousDeathTest, ParametersOutsideTheirRangesAreProgrammerErrors) {
+  const AtrousGuide guide = tilted_plane(8, 8, 0.1f);
+  const ImageF m(8, 8, 1, 0.5f);
+  AtrousParams p;
+  p.normal_power = 11;
+  EXPECT_DEATH(atrous_denoise(m, guide, p, scalar_rows()), "CHECK");
+  p.normal_power = 7;
+  p.iterations = 11;
+  EXPECT_DEATH(atrous_denoise(m, guide, p, scalar_rows()), "CHECK");
+}
+
+TEST(KeysPage, TheReviewedPageIsWhatTheDeclarationsSay) {
+  // docs/techniques/keys.md was reviewed; every key's default, range and help comes from its
+  // declaration, so a changed declaration changes the page.
+  std::ifstream f(test::source_path("docs/techniques/keys.md"));
+  ASSERT_TRUE(f);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  // The page is the declarations' text, then tune's default spaces (lab/param_space.h).
+  const std::string page = ss.str(), keys = technique_keys_markdown();
+  EXPECT_EQ(page.substr(0, keys.size()), keys) << "run bash docs/techniques/keys.sh";
+  const std::string next = "\n## tune's default spaces\n";
+  EXPECT_EQ(page.compare(keys.size(), next.size(), next), 0);
+}
+
+}  // namespace rt_denoised_definition_test
 }  // namespace shadowlab
