@@ -401,6 +401,18 @@ TEST(Atrous, TheGuidesVerticalGradientSkipsAHoleBelowOrAbove) {
   EXPECT_FLOAT_EQ(guide.g[size_t(h - 1) * w + 2], z(h - 1) - z(h - 2));
 }
 
+TEST(Atrous, TheParametersDefaultsAreTheKeysDefaults) {
+  // Code that filters with AtrousParams{} gets what rts:denoise=atrous declares.
+  const AtrousParams d;
+  const RtDenoisedParams k = parse_rt_denoised(parse_technique_spec("rts:denoise=atrous", "t"), "t");
+  EXPECT_EQ(d.iterations, k.atrous.iterations);
+  EXPECT_EQ(d.sigma_z, k.atrous.sigma_z);
+  EXPECT_EQ(d.normal_power, k.atrous.normal_power);
+  EXPECT_EQ(d.sigma_v, k.atrous.sigma_v);
+  EXPECT_EQ(d.normal_power, 7);  // SVGF's power 128
+  EXPECT_EQ(k.spp, 4);
+}
+
 TEST(AtrousDeathTest, ParametersOutsideTheirRangesAreProgrammerErrors) {
   const AtrousGuide guide = tilted_plane(8, 8, 0.1f);
   const ImageF m(8, 8, 1, 0.5f);
