@@ -157,7 +157,9 @@ TEST(Gltf, SpotConesWiderThanTheProjectorTakesAreRefused) {
 
 // A lit scene: floor, box, an alpha-masked card with a checkerboard alpha, a point light (range,
 // extras.radius), a spot light and a perspective camera. Returns the path.
-std::string lit_scene(const std::string& file, bool with_light = true, bool with_camera = true) {
+// `leaf_alpha`: the leaf's baseColorFactor alpha; `bulb_radius`: the point light's extras.radius.
+std::string lit_scene(const std::string& file, bool with_light = true, bool with_camera = true,
+                      double leaf_alpha = 1.0, double bulb_radius = 0.05) {
   GltfWriter w;
   // An 8×8 RGBA texture: alpha 0 on black squares of a 2×2-texel checkerboard, 255 elsewhere.
   std::vector<uint8_t> rgba(8 * 8 * 4);
@@ -190,7 +192,8 @@ std::string lit_scene(const std::string& file, bool with_light = true, bool with
        {"alphaMode", "MASK"},
        {"alphaCutoff", 0.5},
        {"doubleSided", true},
-       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}},
+                                 {"baseColorFactor", {1.0, 1.0, 1.0, leaf_alpha}}}}}});
   const float lo[3] = {-0.5f, 0.0f, -0.5f}, hi[3] = {0.5f, 1.0f, 0.5f};
   const int floor_mesh = w.mesh({test::floor_quad(5.0f, 0.0f, 0)}, "floor");
   const int box_mesh = w.mesh({test::box(lo, hi, 0)}, "box");
@@ -204,7 +207,7 @@ std::string lit_scene(const std::string& file, bool with_light = true, bool with
   if (with_light) {
     w.json["extensionsUsed"] = {"KHR_lights_punctual"};
     w.json["extensions"]["KHR_lights_punctual"]["lights"] = json::array(
-        {{{"type", "point"}, {"range", 20.0}, {"extras", {{"radius", 0.05}}}, {"name", "bulb"}},
+        {{{"type", "point"}, {"range", 20.0}, {"extras", {{"radius", bulb_radius}}}, {"name", "bulb"}},
          {{"type", "spot"}, {"spot", {{"outerConeAngle", 0.5}}}},
          {{"type", "directional"}}});
     nodes.push_back({{"translation", {0.4, 3.0, 0.3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
@@ -286,6 +289,30 @@ TEST(Gltf, WithoutLightAndCameraTheyAreFramedAndSaidSo) {
   // The OBJ framing: light above the bounds centre, camera looking at it.
   EXPECT_GT(s.light.position.y, 1.0f);
   EXPECT_GT(s.light.radius, 0.0f);
+}
+
+TEST(Gltf, TheFactorsAlphaScalesTheTexturesAlphaOnly) {
+  // baseColorFactor.a = 0.5 (glTF: the alpha is texture alpha × factor alpha): the alpha plane
+  // holds 0.5 where the texture's alpha is 1, and the colour planes are the texture's.
+  const Scene s = make_gltf_scene(lit_scene("half_alpha.gltf", true, true, 0.5), {}, nullptr);
+  const Mesh* leaf = nullptr;
+  for (const Mesh& m : s.meshes)
+    if (m.name == "leaf/0") leaf = &m;
+  ASSERT_NE(leaf, nullptr);
+  const ImageF& t = s.textures[size_t(s.materials[size_t(leaf->material)].alpha_texture)];
+  ASSERT_EQ(t.channels, 4);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const bool hole = (x / 2 + y / 2) % 2;
+      EXPECT_EQ(t.data[size_t((3 * 8 + y) * 8 + x)], hole ? 0.0f : 0.5f) << x << "," << y;
+      EXPECT_EQ(t.data[size_t((0 * 8 + y) * 8 + x)], hole ? 1.0f : t.data[0]) << x << "," << y;  // red 255 or 40
+    }
+  EXPECT_LT(t.data[0], 0.03f);  // texel (0, 0) is opaque green: red 40 decodes to 0.021
+}
+
+TEST(Gltf, ALightRadiusOfZeroIsAPointLight) {
+  const Scene s = make_gltf_scene(lit_scene("point.gltf", true, true, 1.0, 0.0), {}, nullptr);
+  EXPECT_EQ(s.light.radius, 0.0f);
 }
 
 // The alpha mask: material cutoff, the texture's alpha plane (v flipped: glTF's top image row is

@@ -19,6 +19,13 @@ void expect_normals_on_front(const Mesh& m) {
   }
 }
 
+TEST(MeshBuildersDeathTest, ASphereOrCylinderOfNoSizeIsAProgrammerError) {
+  Mesh m;
+  EXPECT_DEATH(add_uv_sphere(m, vec3(0.0f), 0.0f, 8, 4), "CHECK");
+  EXPECT_DEATH(add_uv_sphere(m, vec3(0.0f), 1.0f, 2, 4), "CHECK");
+  EXPECT_DEATH(add_uv_sphere(m, vec3(0.0f), 1.0f, 8, 1), "CHECK");
+}
+
 TEST(MeshBuilders, GridQuadFacesCrossOfEdges) {
   Mesh m;
   add_grid_quad(m, vec3(0), vec3(2, 0, 0), vec3(0, 0, -3), 4, 3);  // cross = (0, 6, 0): +y

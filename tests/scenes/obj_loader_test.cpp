@@ -89,6 +89,8 @@ TEST(ObjLoader, MalformedFilesAreInputErrorsNamingTheFile) {
       {"negative_out_of_range.obj", std::string(kTriangle) + "f -1 -2 -4\n", "line 4"},
       {"zero_index.obj", std::string(kTriangle) + "f 0 1 2\n", "index 0"},
       {"two_corner_face.obj", std::string(kTriangle) + "f 1 2\n", "line 4"},
+      {"leading_slash.obj", std::string(kTriangle) + "f /1 2 3\n", "face corner '/1' has an empty index"},
+      {"trailing_slash.obj", std::string(kTriangle) + "f 1 2 3/\n", "face corner '3/' has an empty index"},
       {"normal_out_of_range.obj", std::string(kTriangle) + "f 1//1 2//1 3//1\n", "normal 1"},
       {"unknown_statement.obj", std::string(kTriangle) + "vx 1 2 3\nf 1 2 3\n", "line 4"},
       {"binary.obj", std::string(kBinary, sizeof kBinary), "line 1"},

@@ -250,6 +250,11 @@ TEST(SceneLibrary, ObjSceneIsFramedFromItsBounds) {
   EXPECT_NEAR(glm::dot(glm::normalize(s.camera.eye - b.centre()), glm::normalize(vec3(0, 1, 1))), 1.0f, 1e-6f);
   EXPECT_EQ(s.camera.target, b.centre());
   EXPECT_GT(s.light.radius, 0.0f);
+  // The documented light: c + 1.5·r·normalize(1, 1.5, 0.5), radius 0.01·r.
+  EXPECT_NEAR(glm::length(s.light.position - b.centre()), 1.5f * r, 1e-4f);
+  EXPECT_NEAR(glm::dot(glm::normalize(s.light.position - b.centre()), glm::normalize(vec3(1, 1.5f, 0.5f))),
+              1.0f, 1e-6f);
+  EXPECT_NEAR(s.light.radius, 0.01f * r, 1e-6f);
   add_ground_plane(s);
   EXPECT_NO_THROW(validate_scene(s, path));
   ASSERT_EQ(s.meshes.back().name, "ground");
