@@ -199,5 +199,13 @@ TEST(Contour, MismatchedSizesThrow) {
   EXPECT_THROW(contour_score(ImageD(4, 4, 1), ImageD(5, 4, 1), 0.5), InputError);
 }
 
+TEST(ContourDeathTest, MoreLevelsThanBitsIsAProgrammerError) {
+  // One bit per level in a byte: a ninth level has no bit.
+  const ImageD b(3, 1, 1);
+  const double nine[9] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9};
+  EXPECT_DEATH(contour_bits(b, std::span<const double>(nine, 9)), "CHECK");
+  EXPECT_EQ(contour_bits(b, std::span<const double>(nine, 8)).width, 3);  // eight fit
+}
+
 }  // namespace
 }  // namespace shadowlab

@@ -20,6 +20,17 @@ TEST(Roughness, RobertsCrossOfTwoByTwoBlocks) {
   EXPECT_DOUBLE_EQ(roberts_cross(m, 0, 0), std::sqrt(2.0));
   m.at(1, 1) = 1.0f;  // [1 0; 1 1] → √(0 + 1)
   EXPECT_DOUBLE_EQ(roberts_cross(m, 0, 0), 1.0);
+  // Fractional differences, where a ≠ a²: [1 0; 0 0.5] → 0.5, [0 0.7; 0.3 0] → 0.4,
+  // [0.3 0.4; 0 0] → √(0.09 + 0.16) = 0.5.
+  ImageF f(2, 2, 1, 0.0f);
+  f.at(0, 0) = 1.0f, f.at(1, 1) = 0.5f;
+  EXPECT_DOUBLE_EQ(roberts_cross(f, 0, 0), 0.5);
+  ImageF g(2, 2, 1, 0.0f);
+  g.at(1, 0) = 0.7f, g.at(0, 1) = 0.3f;
+  EXPECT_NEAR(roberts_cross(g, 0, 0), 0.4, 1e-7);
+  ImageF h(2, 2, 1, 0.0f);
+  h.at(0, 0) = 0.3f, h.at(1, 0) = 0.4f;
+  EXPECT_NEAR(roberts_cross(h, 0, 0), 0.5, 1e-7);
 }
 
 // The 2 × 2 block must lie inside the image: its last top-left corner is (w − 2, h − 2).

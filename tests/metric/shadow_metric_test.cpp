@@ -224,6 +224,16 @@ TEST(ShadowMetric, BadInputThrowsInputError) {
     return m;
   };
   EXPECT_THROW(compute_metric(ok, ImageF(8, 9, 1, 0.5f), nullptr, nullptr), InputError);
+  // Sizes that differ in one side only are refused as such, before any pass reads them.
+  for (const auto& [w, h] : {std::pair{8, 9}, std::pair{9, 8}}) {
+    try {
+      compute_metric(ok, ImageF(w, h, 1, 0.5f), nullptr, nullptr);
+      ADD_FAILURE() << w << "x" << h << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "metric: test mask is 8x8x1 but reference mask is " +
+                                           std::to_string(w) + "x" + std::to_string(h) + "x1");
+    }
+  }
   EXPECT_THROW(compute_metric(ImageF(8, 8, 2, 0.5f), ok, nullptr, nullptr), InputError);
   EXPECT_THROW(compute_metric(ImageF(), ImageF(), nullptr, nullptr), InputError);
   EXPECT_THROW(compute_metric(with(3, 4, nan), ok, nullptr, nullptr), InputError);
