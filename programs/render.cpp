@@ -15,6 +15,7 @@
 #include "techniques/shading/scene_shading.h"
 #include "raster/gbuffer_pass.h"
 #include "raytrace/reference_cache.h"
+#include "techniques/rt/rt_denoised.h"
 #include "techniques/shading/projector_shading.h"
 
 using namespace shadowlab;
@@ -74,7 +75,7 @@ int main(int argc, char** argv) {
                   double(w.activation_bytes) * 1e-6);
     if (w.rays > 0)
       std::printf("rays: %llu cast in %.3f ms (%.1f M rays/s); denoiser %.3f ms, %llu filter taps\n",
-                  (unsigned long long)w.rays, r.rays_ms, double(w.rays) / (r.rays_ms * 1e3),
+                  (unsigned long long)w.rays, r.rays_ms, mrays_per_second(w.rays, r.rays_ms),
                   r.denoise_ms, (unsigned long long)w.filter_taps);
     std::printf("wrote %s/mask.exr, mask.png%s, timing.json, shaded.exr, shaded.png\n", out.c_str(),
                 r.texels.empty() ? "" : ", texel.exr");

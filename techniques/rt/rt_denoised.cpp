@@ -55,6 +55,10 @@ RtDenoisedParams parse_rt_denoised(const TechniqueSpec& spec, const char* flag) 
   return p;
 }
 
+double mrays_per_second(uint64_t rays, double ms) {
+  return ms > 0.0 ? double(rays) / (ms * 1e3) : 0.0;
+}
+
 ShadowResult run_rt_denoised(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                              const RunOptions& options) {
   const RtDenoisedParams p = parse_rt_denoised(spec, options.flag);
@@ -98,7 +102,7 @@ ShadowResult run_rt_denoised(const TechniqueSpec& spec, const Scene& scene, cons
                           p.denoise == Denoiser::atrous
                               ? fmt::format("a-trous x{} ({} taps)", p.atrous.iterations, taps)
                               : std::string("not denoised"),
-                          res.rays_ms > 0.0 ? double(rays) / (res.rays_ms * 1e3) : 0.0, build_ms);
+                          mrays_per_second(rays, res.rays_ms), build_ms);
   return res;
 }
 

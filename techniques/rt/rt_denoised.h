@@ -28,6 +28,9 @@ struct RtDenoisedParams {
 const std::vector<KeyDecl<RtDenoisedParams>>& rt_denoised_keys();
 RtDenoisedParams parse_rt_denoised(const TechniqueSpec& spec, const char* flag);
 
+// Millions of rays per second: rays / (ms · 10³); 0 for a time of 0 (nothing measured).
+double mrays_per_second(uint64_t rays, double ms);
+
 ShadowResult run_rt_denoised(const TechniqueSpec& spec, const Scene& scene, const GBuffer& gbuffer,
                              const RunOptions& options);
 
