@@ -258,5 +258,21 @@ TEST(Raster, DepthIdenticalForAnyThreadCount) {
     EXPECT_EQ(0, std::memcmp(results[0].data(), results[i].data(), results[0].size() * 4));
 }
 
+TEST(Raster, AddStatsSumsEveryCount) {
+  // Each field a different power of two: a field left out, assigned or taken from the wrong
+  // side shows in the sums.
+  RasterStats a{1, 2, 4, 8, 16, 32, 64, 128};
+  const RasterStats b{256, 512, 1024, 2048, 4096, 8192, 16384, 32768};
+  add_stats(a, b);
+  EXPECT_EQ(a.triangles_in, 257u);
+  EXPECT_EQ(a.culled_frustum, 514u);
+  EXPECT_EQ(a.culled_facing, 1028u);
+  EXPECT_EQ(a.dropped_degenerate, 2056u);
+  EXPECT_EQ(a.dropped_nonfinite, 4112u);
+  EXPECT_EQ(a.clipped, 8224u);
+  EXPECT_EQ(a.setups, 16448u);
+  EXPECT_EQ(a.fragments, 32896u);
+}
+
 }  // namespace
 }  // namespace shadowlab
