@@ -1,6 +1,7 @@
 #include "lab/sweep_command.h"
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "raytrace/reference_cache.h"
 #include "scenes/scene_registry.h"
 #include "techniques/registry/technique.h"
@@ -63,6 +64,21 @@ std::vector<Scene> sweep_scenes(const SweepCommand& cmd) {
     scenes.push_back(scene_from_options(o));
   }
   return scenes;
+}
+
+void write_sweep_files(const std::string& dir, const SweepResult& r, const SweepConfig& config,
+                       const std::string& plot_file) {
+  write_sweep_csv(dir + "/sweep.csv", r);
+  write_sweep_json(dir + "/sweep.json", r);
+  if (config.shaded_sheet)
+    write_png_rgb(dir + "/contact_sheet.png", sweep_contact_sheet(r, config));
+  else
+    write_png_grey(dir + "/contact_sheet.png", sweep_contact_sheet(r, config));
+  if (!plot_file.empty())
+    write_pareto_svg(plot_file, sweep_plot_points(r),
+                     "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
+                         std::to_string(r.height) + ", reference " + std::to_string(config.spp) +
+                         " spp");
 }
 
 }  // namespace shadowlab

@@ -37,5 +37,9 @@ void finish_sweep_command(SweepCommand& cmd);
 // The scenes the command runs: the suite's, or the one --scene describes, each built and its
 // inputs checked (scene_from_options) before any sweep.
 std::vector<Scene> sweep_scenes(const SweepCommand& cmd);
+// One scene's files in `dir`: sweep.csv, sweep.json, contact_sheet.png (masks or shaded, as
+// config says) and, when `plot_file` is not empty, the score-against-time SVG there.
+void write_sweep_files(const std::string& dir, const SweepResult& r, const SweepConfig& config,
+                       const std::string& plot_file = "");
 
 }  // namespace shadowlab

@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/image_io.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "lab/cli.h"
@@ -48,12 +47,7 @@ int main(int argc, char** argv) {
                     r.scene.c_str(), r.width, r.height, scene.light.radius, c.spp, thread_count(),
                     r.camera_ms);
         std::printf("%s\n", sweep_table(r).c_str());
-        write_sweep_csv(sc.out_dir + "/sweep.csv", r);
-        write_sweep_json(sc.out_dir + "/sweep.json", r);
-        if (c.shaded_sheet)
-          write_png_rgb(sc.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, sc));
-        else
-          write_png_grey(sc.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, sc));
+        write_sweep_files(sc.out_dir, r, sc);
       }
       std::printf("suite %s: %zu scenes\n%s", suite.c_str(), results.size(), suite_table(results).c_str());
       std::vector<const SweepResult*> all;
@@ -100,16 +94,7 @@ int main(int argc, char** argv) {
     for (const SweepRow& row : r.rows)
       std::printf("  %-16s %s\n", row.label.c_str(), row.result.notes.c_str());
     std::printf("  reference: %s\n", r.reference.result.notes.c_str());
-    write_sweep_csv(c.out_dir + "/sweep.csv", r);
-    write_sweep_json(c.out_dir + "/sweep.json", r);
-    if (c.shaded_sheet)
-      write_png_rgb(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
-    else
-      write_png_grey(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
-    if (plot_given)
-      write_pareto_svg(plot_file, sweep_plot_points(r),
-                       "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
-                           std::to_string(r.height) + ", reference " + std::to_string(c.spp) + " spp");
+    write_sweep_files(c.out_dir, r, c, plot_file);
     outputs.commit();
     std::printf("wrote %s/sweep.csv, sweep.json, contact_sheet.png and every mask and shaded image (EXR + PNG)%s%s\n",
                 common.out.c_str(), plot_given ? " and plot " : "", plot.c_str());

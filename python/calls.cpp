@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "core/image_io.h"
 #include "core/parallel.h"
 #include "core/spec.h"
 #include "core/timer.h"
@@ -278,16 +277,7 @@ std::vector<Fields> resolution_sweep(const std::vector<std::string>& flags) {
       cmd.plot_given ? outputs.file("--plot", cmd.plot, ".svg") : std::string();
   c.out_dir = outputs.dir();
   const SweepResult r = run_resolution_sweep(scenes[0], c);
-  write_sweep_csv(c.out_dir + "/sweep.csv", r);
-  write_sweep_json(c.out_dir + "/sweep.json", r);
-  if (c.shaded_sheet)
-    write_png_rgb(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
-  else
-    write_png_grey(c.out_dir + "/contact_sheet.png", sweep_contact_sheet(r, c));
-  if (cmd.plot_given)
-    write_pareto_svg(plot_file, sweep_plot_points(r),
-                     "resolution_sweep: " + r.scene + ", " + std::to_string(r.width) + "x" +
-                         std::to_string(r.height) + ", reference " + std::to_string(c.spp) + " spp");
+  write_sweep_files(c.out_dir, r, c, plot_file);
   outputs.commit();
   rows.push_back(sweep_row_fields(r.scene, r.reference));
   for (const SweepRow& row : r.rows) rows.push_back(sweep_row_fields(r.scene, row));
